@@ -1,0 +1,162 @@
+// The model IR: what a model description file says, validated and resolved.
+//
+// Parsing (parse_model.h) fills it; the symbolic generator and the runtime read
+// it. Nothing here knows YAML or GiNaC. Every name stored here has passed the
+// identifier check ([A-Za-z_][A-Za-z0-9_]*), every number is finite, and every
+// cross reference (parent, body of a load, beam of a contact) is resolved to an
+// index. SI units throughout; planar, ground frame (x, y).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace mbfe::model {
+
+/// Position of a key or value in the model file; 1-based, 0 when unknown.
+struct SourceLoc {
+  int line = 0;
+  int column = 0;
+};
+
+using Vec2 = std::array<double, 2>;
+
+enum class JointType { kRevolute, kPrismatic };
+
+/// A single-DOF joint connecting a body to its parent.
+/// Revolute: body frame = parent frame translated to `at`, rotated CCW by q.
+/// Prismatic: body frame = parent frame translated to `at + q * axis`, not
+/// rotated (`axis` is stored normalised, in the parent frame).
+struct Joint {
+  JointType type = JointType::kRevolute;
+  Vec2 at{0.0, 0.0};    // m, parent frame
+  Vec2 axis{1.0, 0.0};  // unit vector, parent frame (prismatic only)
+  SourceLoc loc;
+};
+
+struct NamedPoint {
+  std::string name;
+  Vec2 position{0.0, 0.0};  // m, body frame
+  SourceLoc loc;
+};
+
+/// A rigid body; owns generalized coordinate number `index` (file order).
+struct Body {
+  std::string name;
+  int parent = -1;     // index into Model::bodies; -1 = ground
+  Joint joint;
+  double mass = 0.0;     // kg, >= 0 (0 = fictitious, massless body)
+  double inertia = 0.0;  // kg m^2 about the centre of mass, >= 0
+  Vec2 com{0.0, 0.0};    // m, body frame
+  std::vector<NamedPoint> points;
+  SourceLoc loc;
+};
+
+enum class LoadType { kForce, kTorque, kSpringDamper };
+
+/// A load on the rigid part. Force: ground-frame force at a named point (or at
+/// the body-frame origin when no point is given). Torque: on the body.
+/// SpringDamper: Q_i += -stiffness (q_i - rest) - damping qd_i on the body's
+/// own joint coordinate.
+struct Load {
+  LoadType type = LoadType::kForce;
+  int body = -1;        // index into Model::bodies
+  int point = -1;       // index into Body::points; -1 = body-frame origin
+  Vec2 force{0.0, 0.0}; // N, ground frame
+  double torque = 0.0;  // N m
+  double stiffness = 0.0;  // N/m or N m/rad
+  double damping = 0.0;    // N s/m or N m s/rad
+  double rest = 0.0;       // m or rad
+  SourceLoc loc;
+};
+
+enum class SupportType { kPinned, kClamped };
+
+struct Support {
+  double at = 0.0;  // m along the beam
+  SupportType type = SupportType::kPinned;
+  int node = -1;    // resolved node index (0 .. elements)
+  SourceLoc loc;
+};
+
+/// Transverse point force on a beam, applied from t = 0.
+struct BeamPointLoad {
+  double at = 0.0;     // m along the beam
+  double value = 0.0;  // N, positive to the left of the beam axis
+  int node = -1;       // resolved node index
+  SourceLoc loc;
+};
+
+enum class AdjustmentPolicy { kNone, kCap, kPaperEq25, kKeepSlow };
+
+/// Modal adjustment of damping (Section 6 of the paper; method-notes section 2).
+struct Adjustment {
+  bool present = false;          // the beam has an `adjustment:` block
+  double omega_limit = 0.0;      // rad/s
+  double margin = 0.1;           // the paper's l
+  double zeta_min = 0.0;         // damping-ratio floor for oscillatory modes
+  AdjustmentPolicy policy = AdjustmentPolicy::kCap;
+  SourceLoc loc;
+};
+
+enum class MassLumping { kConsistent, kLumped };
+
+/// A planar Euler-Bernoulli beam fixed to the ground.
+struct Beam {
+  std::string name;
+  Vec2 origin{0.0, 0.0};  // m, the end s = 0 in the ground frame
+  double angle = 0.0;     // rad, axis direction from the ground x axis
+  double length = 0.0;    // m, > 0
+  int elements = 0;       // > 0
+  double area = 0.0;      // m^2 (from `section`)
+  double second_moment = 0.0;  // m^4 (from `section`)
+  double youngs_modulus = 0.0; // Pa
+  double density = 0.0;        // kg/m^3
+  std::vector<Support> supports;
+  double rayleigh_alpha = 0.0;  // 1/s
+  double rayleigh_beta = 0.0;   // s
+  std::vector<BeamPointLoad> loads;
+  Adjustment adjustment;
+  MassLumping mass = MassLumping::kConsistent;
+  SourceLoc loc;
+};
+
+enum class ContactType { kPin, kSliderPin };
+
+/// A body vertex pinned to, or sliding along, a beam's neutral axis.
+struct Contact {
+  std::string name;
+  ContactType type = ContactType::kPin;
+  int body = -1;   // index into Model::bodies
+  int point = -1;  // index into Body::points
+  int beam = -1;   // index into Model::beams
+  double at = 0.0; // m along the beam (pin only)
+  SourceLoc loc;
+};
+
+struct Initial {
+  std::vector<double> q;   // one per body, model order (missing = 0)
+  std::vector<double> qd;  // one per body
+};
+
+struct Simulation {
+  std::string integrator = "rk4";
+  double step = 1.0e-3;  // s
+  double t_end = 1.0;    // s
+  SourceLoc loc;
+};
+
+struct Model {
+  std::string name;          // identifier
+  std::string source_path;   // as given on the command line
+  std::string source_sha256; // hex digest of the file's bytes
+  Vec2 gravity{0.0, 0.0};    // m/s^2, ground frame
+  std::vector<Body> bodies;
+  std::vector<Load> loads;
+  std::vector<Beam> beams;
+  std::vector<Contact> contacts;
+  Initial initial;
+  Simulation simulation;
+};
+
+}  // namespace mbfe::model

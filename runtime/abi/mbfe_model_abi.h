@@ -1,0 +1,68 @@
+/* The binary interface between a generated solver and the runtime.
+ *
+ * Every generated model defines `const mbfe_model_v1* mbfe_model_<name>(void)`
+ * with C linkage; a solver compiled at run time into a shared library also
+ * defines `mbfe_model_entry` (the generated file does so when
+ * MBFE_SHARED_ENTRY is defined). Plain C so that the loader needs no C++ ABI
+ * agreement beyond the compiler that built both sides.
+ *
+ * Matrices are dense row-major; vectors have one entry per generalized
+ * coordinate of the rigid part, in model (file) order.
+ */
+#ifndef MBFE_MODEL_ABI_H_
+#define MBFE_MODEL_ABI_H_
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define MBFE_MODEL_ABI_VERSION 1
+
+/* Contact kernels, one set per contact, evaluated on one beam element.
+ * Inputs: q, qd (rigid coordinates); the element's 4 local beam DOFs
+ * (w1, w1', w2, w2') and their rates; the element's start coordinate s0 and
+ * length le. Outputs written for `rows` constraint rows (2 pin, 1 slider). */
+typedef struct mbfe_contact_kernels_v1 {
+  const char* name;
+  int type; /* 0 = pin, 1 = slider_pin */
+  int beam; /* index of the beam in model order */
+  double at; /* pin position along the beam (m); unused for sliders */
+  int rows;
+  /* Position along the beam of the contact point, s(q) (slider) or `at`. */
+  double (*position)(const double* q);
+  /* Phi[rows] */
+  void (*phi)(const double* q, const double* qe, double s0, double le, double* Phi);
+  /* Jb[rows * nq] row-major, Je[rows * 4] row-major */
+  void (*jacobians)(const double* q, const double* qe, double s0, double le, double* Jb,
+                    double* Je);
+  /* gamma[rows] = -(dJ/dt) q' */
+  void (*gamma)(const double* q, const double* qd, const double* qe, const double* qed,
+                double s0, double le, double* gamma);
+} mbfe_contact_kernels_v1;
+
+typedef struct mbfe_model_v1 {
+  int abi_version;               /* MBFE_MODEL_ABI_VERSION */
+  const char* model_name;
+  const char* model_sha256;      /* of the model file's bytes */
+  const char* generator_version;
+  int num_coordinates;           /* nq, one per rigid body */
+  const char* const* coordinate_names;
+  /* M[nq * nq], row-major, symmetric */
+  void (*mass_matrix)(const double* q, double* M);
+  /* F[nq]: velocity-dependent inertial terms */
+  void (*inertial_forces)(const double* q, const double* qd, double* F);
+  /* Q[nq]: gravity, loads and springs */
+  void (*generalized_forces)(const double* q, const double* qd, double t, double* Q);
+  /* Position (ground frame) of a named point: body index, point index. */
+  void (*point_position)(const double* q, int body, int point, double* xy);
+  int num_contacts;
+  const mbfe_contact_kernels_v1* contacts;
+} mbfe_model_v1;
+
+typedef const mbfe_model_v1* (*mbfe_model_entry_fn)(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MBFE_MODEL_ABI_H_ */

@@ -1,0 +1,82 @@
+#include "cli_args.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+namespace mbfe::tool {
+
+ParsedArgs::ParsedArgs(const std::vector<std::string>& args, const std::set<std::string>& value_flags,
+                       const std::set<std::string>& bool_flags) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg.rfind("--", 0) != 0 || arg == "--") {
+      positional_.push_back(arg);
+      continue;
+    }
+    std::string name = arg.substr(2);
+    std::optional<std::string> inline_value;
+    if (const auto eq = name.find('='); eq != std::string::npos) {
+      inline_value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+    }
+    if (bool_flags.count(name)) {
+      if (inline_value) throw UsageError("flag --" + name + " takes no value");
+      bools_.insert(name);
+    } else if (value_flags.count(name)) {
+      if (inline_value) {
+        values_[name] = *inline_value;
+      } else {
+        if (i + 1 >= args.size()) throw UsageError("flag --" + name + " needs a value");
+        values_[name] = args[++i];
+      }
+    } else {
+      throw UsageError("unknown flag --" + name + " (see --help)");
+    }
+  }
+}
+
+bool ParsedArgs::has(const std::string& flag) const {
+  return bools_.count(flag) > 0 || values_.count(flag) > 0;
+}
+
+std::optional<std::string> ParsedArgs::value(const std::string& flag) const {
+  auto it = values_.find(flag);
+  if (it == values_.end()) return std::nullopt;
+  return it->second;
+}
+
+double parse_number(const std::string& text, const std::string& what) {
+  if (text.empty()) throw UsageError(what + ": expected a number, got an empty string");
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || errno == ERANGE)
+    throw UsageError(what + ": expected a number, got '" + text + "'");
+  if (!std::isfinite(v)) throw UsageError(what + ": expected a finite number, got '" + text + "'");
+  return v;
+}
+
+std::optional<double> ParsedArgs::number(const std::string& flag) const {
+  auto v = value(flag);
+  if (!v) return std::nullopt;
+  return parse_number(*v, "--" + flag);
+}
+
+std::optional<std::vector<double>> ParsedArgs::numbers(const std::string& flag) const {
+  auto v = value(flag);
+  if (!v) return std::nullopt;
+  std::vector<double> out;
+  if (v->empty()) return out;
+  std::size_t start = 0;
+  while (true) {
+    const auto comma = v->find(',', start);
+    const std::string item = v->substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    out.push_back(parse_number(item, "--" + flag + " entry " + std::to_string(out.size() + 1)));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+}  // namespace mbfe::tool

@@ -1,0 +1,47 @@
+// A small, strict command-line reader shared by the subcommands.
+//
+// Flags are `--name value` or `--name=value`; boolean flags take no value.
+// Anything unknown is an error (exit status 2), never silently ignored.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mbfe::tool {
+
+/// Bad flags or values on the command line; printed as `mbfe <cmd>: <what>`.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class ParsedArgs {
+ public:
+  /// @param value_flags flags that take a value (without the leading "--").
+  /// @param bool_flags flags that take none.
+  /// @throws UsageError on an unknown flag or a missing value.
+  ParsedArgs(const std::vector<std::string>& args, const std::set<std::string>& value_flags,
+             const std::set<std::string>& bool_flags);
+
+  bool has(const std::string& flag) const;
+  std::optional<std::string> value(const std::string& flag) const;
+  /// The value parsed as a finite double. @throws UsageError otherwise.
+  std::optional<double> number(const std::string& flag) const;
+  /// Comma-separated finite doubles ("0.1,0.2"). @throws UsageError otherwise.
+  std::optional<std::vector<double>> numbers(const std::string& flag) const;
+  const std::vector<std::string>& positional() const { return positional_; }
+
+ private:
+  std::map<std::string, std::string> values_;
+  std::set<std::string> bools_;
+  std::vector<std::string> positional_;
+};
+
+/// Parses a finite double; `what` names it in the error message.
+double parse_number(const std::string& text, const std::string& what);
+
+}  // namespace mbfe::tool
