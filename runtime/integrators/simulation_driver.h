@@ -1,0 +1,88 @@
+// Runs an OdeSystem with one integrator at a fixed step from t0 to t_end,
+// hands decimated rows to a sink, watches for divergence, shows progress and
+// stops cleanly on SIGINT.
+//
+//   runtime::SimulationOptions opt;
+//   opt.step = 1.4e-5; opt.t_end = 1.0;
+//   auto result = runtime::run_simulation(system, runtime::parse_integrator("forward_euler"),
+//                                         y0, opt, [&](double t, const Eigen::VectorXd& y) {
+//                                           write_csv_row(t, y); });
+//   if (result.status == runtime::SimulationStatus::kDiverged) { ... exit 3 ... }
+//
+// Rows: the sink receives t0 and y0 first, then the state after every
+// `every`-th step, and always the last state reached (t_end, or the last state
+// that passed the divergence check, or the state when interrupted). The sink is
+// called from the simulating thread; it owns the output and its flushing.
+//
+// Divergence: after every step, y is "diverged" when its Euclidean norm is not
+// finite or exceeds
+//     bound = divergence_factor * max(|y0|, reference_norm, R)
+// where R is the largest |y| seen up to the last step number that is a power
+// of two (so R trails the run by at most half its length: a bounded response
+// raises R, an instability grows by the factor within a stretch of steps).
+// divergence_factor defaults to 1e6; reference_norm is a scale the caller
+// knows (for a beam: the norm of its static state under the load), 0 if none.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "integrators/integrator.h"
+#include "integrators/ode_system.h"
+
+namespace mbfe::runtime {
+
+struct SimulationOptions {
+  double t0 = 0.0;     // s
+  double step = 0.0;   // s, > 0
+  double t_end = 0.0;  // s, >= t0; the last step is shortened to land on t_end
+                       // (one-step methods only; multistep methods stop at the
+                       // last full step <= t_end + step * 1e-9)
+  /// Emit every `every`-th step. 0 = automatic: every = ceil(steps / max_rows),
+  /// so at most about max_rows + 2 rows are written.
+  std::int64_t every = 0;
+  std::int64_t max_rows = 10000;  // used when every == 0
+  double divergence_factor = 1.0e6;
+  double reference_norm = 0.0;    // see the header comment
+  /// Progress line on stderr (percentage, steps/s, time left), refreshed about
+  /// twice a second, only when stderr is a terminal and quiet is false.
+  bool quiet = false;
+  /// Install a SIGINT handler for the run (restored afterwards): Ctrl-C stops
+  /// after the current step with status kInterrupted.
+  bool handle_sigint = true;
+};
+
+enum class SimulationStatus { kCompleted, kDiverged, kInterrupted, kFailed };
+
+struct SimulationResult {
+  SimulationStatus status = SimulationStatus::kCompleted;
+  double t = 0.0;            // s: time of the last state that passed the checks
+                             // (kDiverged: t of the step that failed them is t + step)
+  std::int64_t steps = 0;    // accepted steps
+  double step = 0.0;         // s, as asked
+  std::string integrator;    // canonical integrator name
+  double norm = 0.0;         // |y| at the failing step (kDiverged; may be inf or nan)
+  double bound = 0.0;        // the bound it exceeded (kDiverged)
+  std::string message;       // kFailed: what the system threw
+  std::int64_t rows = 0;     // rows handed to the sink
+  double wall_seconds = 0.0;
+};
+
+using RowSink = std::function<void(double t, const Eigen::VectorXd& y)>;
+
+/// Integrates `system` from y0 (size system.size()). Never throws for a
+/// numerical fault of the system: that is kFailed with `message` (rows so far
+/// emitted). @throws std::invalid_argument for bad options (step <= 0,
+/// t_end < t0, y0 of the wrong size) or an integrator the system cannot take.
+SimulationResult run_simulation(OdeSystem& system, const IntegratorSpec& integrator,
+                                const Eigen::VectorXd& y0, const SimulationOptions& options,
+                                const RowSink& sink);
+
+/// "diverged at t = 0.0123 s: step 1.5e-05 ..." without the limit part:
+/// `diverged at t = T s (|y| = N exceeds the bound B) with forward_euler, step H`.
+/// Callers that know the stable limit print their own sentence.
+std::string describe(const SimulationResult& result);
+
+}  // namespace mbfe::runtime
