@@ -31,6 +31,9 @@ struct ParseLimits {
   int max_beam_elements = 200000;   // per beam
   long max_total_beam_dofs = 2000000;
   std::size_t max_name_length = 128;
+  /// Collections nested deeper than this are refused before yaml-cpp, whose
+  /// recursive parser could otherwise exhaust the stack; real models nest 5.
+  int max_nesting_depth = 64;
 };
 
 /// Reads and validates `path`. @throws ModelError on any problem, with the

@@ -1,0 +1,32 @@
+// Checks on the raw bytes of a model file, made before yaml-cpp sees them.
+//
+// yaml-cpp parses nested collections recursively, so a file of a million `[`
+// could exhaust the stack; it also takes any bytes. This scan rejects what is
+// not text and what nests absurdly deep, cheaply and without recursion.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "model/model.h"
+
+namespace mbfe::model {
+
+/// Why a text must not be handed to the YAML parser, and where.
+struct TextProblem {
+  SourceLoc loc;  // 1-based line and byte column
+  std::string message;
+};
+
+/// Returns the first byte that makes `text` not a text file: a NUL or other
+/// control character (tab, LF and CR are fine) or a malformed UTF-8 sequence.
+std::optional<TextProblem> find_non_text(const std::string& text);
+
+/// Returns the first place where collections nest deeper than `max_depth`,
+/// counting flow brackets `[` `{`, block indentation levels and compact
+/// sequence dashes (`- - x`). A heuristic scanner, not a YAML parser: quoted
+/// strings, comments and block scalars are skipped so that brackets in text do
+/// not count; it may over-count only on unbalanced brackets in plain scalars.
+std::optional<TextProblem> find_excess_nesting(const std::string& text, int max_depth);
+
+}  // namespace mbfe::model

@@ -1,0 +1,109 @@
+// Typed, located access to a yaml-cpp tree for the model parser.
+//
+// Every accessor either returns a checked value or throws ModelError pointing
+// at the offending key or value; no yaml-cpp conversion (`as<T>`) is used, so
+// no yaml-cpp exception escapes and numbers are read the same in every locale.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "model/model.h"
+#include "model/parse_model.h"
+
+namespace mbfe::model {
+
+/// 1-based location of a node, or {0, 0} when yaml-cpp has none.
+SourceLoc location_of(const YAML::Node& node);
+
+/// The value as written, shortened and with unprintable bytes escaped, for
+/// `(got ...)` in messages.
+std::string shown(const std::string& text);
+
+/// `node` in words for "expected ..., got <this>": `a map`, `a list of 3
+/// items`, `nothing`, `the string "abc"`, `'abc'`.
+std::string describe(const YAML::Node& node);
+
+/// A number printed for a message (12 significant digits).
+std::string format_number(double value);
+
+/// One `key: value` entry of a map.
+struct Field {
+  std::string key;
+  YAML::Node key_node;
+  YAML::Node value;
+  SourceLoc key_loc;
+  SourceLoc value_loc;  // falls back to key_loc when yaml-cpp gives no mark
+};
+
+/// A YAML map seen as the fields of one thing of the model, e.g. body
+/// 'link1' or its joint. `context` names the thing ("body 'link1'", empty at
+/// the top level); `path` is prepended to key names in messages ("joint.").
+class MapView {
+ public:
+  /// @throws ModelError if `node` is not a map, a key is not a plain string,
+  /// or a key appears twice.
+  MapView(const std::string& file, const YAML::Node& node, std::string context,
+          std::string path, SourceLoc fallback_loc);
+
+  /// @throws ModelError at the first key not in `allowed`.
+  void allow(std::initializer_list<const char*> allowed) const;
+
+  /// Renames the thing in later messages (once its name is known).
+  void set_context(std::string context) { context_ = std::move(context); }
+
+  const Field* find(const std::string& key) const;
+  /// @throws ModelError at the map if `key` is missing.
+  const Field& require(const std::string& key) const;
+  const std::vector<Field>& fields() const { return fields_; }
+  SourceLoc loc() const { return loc_; }
+
+  /// A nested map under `field`, with `path` extended by the field's key.
+  MapView sub(const Field& field) const;
+
+  // Checked values. `what` in messages is path + key, e.g. "joint.at".
+  double number(const Field& field) const;
+  double number_at_least(const Field& field, double minimum) const;  // >= minimum
+  double positive(const Field& field) const;                         // > 0
+  long long whole_number(const Field& field) const;
+  Vec2 vec2(const Field& field) const;
+  std::string text(const Field& field) const;  // any scalar
+  /// A name that may reach generated C++: identifier, not a keyword, at most
+  /// `max_length` characters.
+  std::string identifier(const Field& field, std::size_t max_length) const;
+  /// Index of the value in `choices`.
+  int choice(const Field& field, std::initializer_list<const char*> choices) const;
+  /// The items of a list; a missing value (`key:` alone) is an empty list.
+  std::vector<YAML::Node> list(const Field& field) const;
+
+  // Optional fields with defaults.
+  double number_or(const std::string& key, double fallback) const;
+  Vec2 vec2_or(const std::string& key, Vec2 fallback) const;
+
+  /// "<context>: <message>", or the message alone at the top level.
+  std::string prefixed(const std::string& message) const;
+  /// Display name of a key: path + key.
+  std::string what(const Field& field) const { return path_ + field.key; }
+  /// "in body 'link1' joint" / "at the top level", for key errors.
+  std::string where() const;
+
+  [[noreturn]] void fail(SourceLoc loc, const std::string& message) const;
+
+ private:
+  std::string file_;
+  YAML::Node node_;
+  std::string context_;
+  std::string path_;
+  SourceLoc loc_;
+  std::vector<Field> fields_;
+};
+
+/// Validates a name given in an identifier-like role outside a MapView (the
+/// keys of `points:` and `initial.q:`). Returns the empty string when fine,
+/// otherwise why not.
+std::string identifier_problem(const std::string& name, std::size_t max_length);
+
+}  // namespace mbfe::model
