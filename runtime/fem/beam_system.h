@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -25,10 +26,51 @@ struct BeamSystem {
   std::vector<int> free_dof;
   /// full_to_free[i] = free index of full DOF i, or -1 if fixed by a support.
   std::vector<int> full_to_free;
+  double length = 0.0;               // m
+  double rayleigh_alpha = 0.0;       // 1/s (C = alpha M + beta K)
+  double rayleigh_beta = 0.0;        // s
 };
 
 /// Assembles one beam. @param gravity ground-frame gravity (m/s^2); its
 /// transverse component loads the beam with its own weight.
+/// The transverse unit vector is the axis rotated by +90 deg,
+/// n = (-sin angle, cos angle); positive w and positive point loads point
+/// along n. Own weight: uniform q = rho A (g . n) N/m with consistent nodal
+/// loads (forces and moments); point loads act on the node's w. Loads on DOFs
+/// fixed by a support go to the support (dropped from P).
+/// Supports and point loads use their resolved `node` when >= 0, else `at`
+/// must fall on a node (within 1e-9 L).
+/// @throws std::invalid_argument on a non-positive property, a support or load
+/// off the nodes or outside [0, L] (message names the beam).
 BeamSystem assemble_beam(const model::Beam& beam, const model::Vec2& gravity);
+
+/// Node index of position `s` (m) along `beam`. @throws std::invalid_argument
+/// if s is outside [0, L] or not at a node (within 1e-9 L); `what` names the
+/// item in the message ("support", "load").
+int node_at(const model::Beam& beam, double s, const char* what);
+
+/// Where position s (m) lies on an assembled beam: its element (0-based; the
+/// last element for s = L) and xi = (s - s_e) / le in [0, 1].
+struct BeamPoint {
+  int element = 0;
+  double xi = 0.0;
+};
+/// @throws std::invalid_argument if s is outside [0, L] (1e-12 L slack).
+BeamPoint locate_on_beam(const BeamSystem& beam, double s);
+
+/// w(s), w'(s) and w''(s) as linear maps of the free coordinates q:
+/// w(s) = sum_i w[i] q[free_index[i]] over the i with free_index[i] >= 0
+/// (-1 marks an element DOF fixed by a support). Hermite element only.
+struct BeamPointWeights {
+  std::array<int, 4> free_index{-1, -1, -1, -1};
+  Eigen::Vector4d w = Eigen::Vector4d::Zero();        // 1
+  Eigen::Vector4d dw_ds = Eigen::Vector4d::Zero();    // 1/m
+  Eigen::Vector4d d2w_ds2 = Eigen::Vector4d::Zero();  // 1/m^2
+};
+BeamPointWeights point_weights(const BeamSystem& beam, double s);
+
+/// Transverse displacement w(s) in m for free coordinates q (size = dof).
+/// @throws std::invalid_argument if q has the wrong size or s is off the beam.
+double deflection_at(const BeamSystem& beam, const Eigen::VectorXd& q, double s);
 
 }  // namespace mbfe::runtime

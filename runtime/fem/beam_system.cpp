@@ -1,0 +1,175 @@
+// Sparse assembly of one beam: element matrices -> M, K, C, P with the
+// support-fixed DOFs removed (contract order: nodes s = 0 .. L, [w, w']).
+#include "fem/beam_system.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "fem/beam_element.h"
+#include "fem/hermite_shape.h"
+
+namespace mbfe::runtime {
+
+namespace {
+
+// A support or load counts as "at a node" within this fraction of the beam
+// length: far above rounding of decimal positions, far below any element.
+constexpr double kNodeTolerance = 1e-9;
+
+std::string beam_error(const model::Beam& beam, const std::string& message) {
+  return "beam '" + beam.name + "': " + message;
+}
+
+}  // namespace
+
+int node_at(const model::Beam& beam, double s, const char* what) {
+  const double L = beam.length;
+  const double slack = kNodeTolerance * L;
+  if (!(s >= -slack && s <= L + slack)) {
+    std::ostringstream os;
+    os.precision(17);
+    os << what << " at " << s << " m is outside the beam [0, " << L << "]";
+    throw std::invalid_argument(beam_error(beam, os.str()));
+  }
+  const double le = L / beam.elements;
+  const long node = std::lround(s / le);
+  if (std::abs(s - node * le) > slack) {
+    std::ostringstream os;
+    os.precision(17);
+    os << what << " at " << s << " m is not at a node (nodes every " << le
+       << " m; nearest " << node * le << " m)";
+    throw std::invalid_argument(beam_error(beam, os.str()));
+  }
+  return static_cast<int>(std::clamp<long>(node, 0, beam.elements));
+}
+
+BeamSystem assemble_beam(const model::Beam& beam, const model::Vec2& gravity) {
+  const std::unique_ptr<BeamElement> element = make_beam_element(beam);
+  const int ne = beam.elements;
+  const int nd = element->node_dofs();
+  const int nn = ne + 1;
+  const int n_full = nd * nn;
+
+  BeamSystem sys;
+  sys.name = beam.name;
+  sys.num_nodes = nn;
+  sys.length = beam.length;
+  sys.element_length = beam.length / ne;
+  sys.rayleigh_alpha = beam.rayleigh_alpha;
+  sys.rayleigh_beta = beam.rayleigh_beta;
+
+  // Supports: pinned fixes w, clamped fixes w and w'.
+  std::vector<char> fixed(n_full, 0);
+  for (const model::Support& sup : beam.supports) {
+    const int node = sup.node >= 0 ? sup.node : node_at(beam, sup.at, "support");
+    if (node < 0 || node >= nn) {
+      throw std::invalid_argument(beam_error(beam, "support node " + std::to_string(node) +
+                                                       " is outside 0.." + std::to_string(ne)));
+    }
+    fixed[nd * node] = 1;
+    if (sup.type == model::SupportType::kClamped) fixed[nd * node + 1] = 1;
+  }
+  sys.full_to_free.assign(n_full, -1);
+  for (int i = 0; i < n_full; ++i) {
+    if (!fixed[i]) {
+      sys.full_to_free[i] = static_cast<int>(sys.free_dof.size());
+      sys.free_dof.push_back(i);
+    }
+  }
+  const int n = static_cast<int>(sys.free_dof.size());
+
+  // Full-length load vector first; restricted to the free DOFs below.
+  Eigen::VectorXd p_full = Eigen::VectorXd::Zero(n_full);
+  const double nx = -std::sin(beam.angle);
+  const double ny = std::cos(beam.angle);
+  const double q_weight = beam.density * beam.area * (gravity[0] * nx + gravity[1] * ny);
+
+  // Uniform beam: one element matrix serves every element.
+  const Eigen::MatrixXd ke = element->stiffness();
+  const Eigen::MatrixXd me = element->mass();
+  const Eigen::VectorXd pe = element->uniform_load(q_weight);
+  const int ed = 2 * nd;
+
+  std::vector<Eigen::Triplet<double>> tk, tm;
+  tk.reserve(static_cast<size_t>(ne) * ed * ed);
+  tm.reserve(static_cast<size_t>(ne) * ed * ed);
+  for (int e = 0; e < ne; ++e) {
+    const int base = nd * e;
+    for (int a = 0; a < ed; ++a) {
+      p_full[base + a] += pe[a];
+      const int ra = sys.full_to_free[base + a];
+      if (ra < 0) continue;
+      for (int b = 0; b < ed; ++b) {
+        const int cb = sys.full_to_free[base + b];
+        if (cb < 0) continue;
+        if (ke(a, b) != 0.0) tk.emplace_back(ra, cb, ke(a, b));
+        if (me(a, b) != 0.0) tm.emplace_back(ra, cb, me(a, b));
+      }
+    }
+  }
+  for (const model::BeamPointLoad& load : beam.loads) {
+    const int node = load.node >= 0 ? load.node : node_at(beam, load.at, "point load");
+    if (node < 0 || node >= nn) {
+      throw std::invalid_argument(beam_error(beam, "point load node " + std::to_string(node) +
+                                                       " is outside 0.." + std::to_string(ne)));
+    }
+    p_full[nd * node] += load.value;
+  }
+
+  sys.K.resize(n, n);
+  sys.M.resize(n, n);
+  sys.K.setFromTriplets(tk.begin(), tk.end());
+  sys.M.setFromTriplets(tm.begin(), tm.end());
+  sys.K.makeCompressed();
+  sys.M.makeCompressed();
+  sys.C = beam.rayleigh_alpha * sys.M + beam.rayleigh_beta * sys.K;
+  sys.C.makeCompressed();
+  sys.P.resize(n);
+  for (int k = 0; k < n; ++k) sys.P[k] = p_full[sys.free_dof[k]];
+  return sys;
+}
+
+BeamPoint locate_on_beam(const BeamSystem& beam, double s) {
+  const double L = beam.length;
+  if (!(s >= -1e-12 * L && s <= L * (1.0 + 1e-12))) {
+    std::ostringstream os;
+    os.precision(17);
+    os << "beam '" << beam.name << "': position " << s << " m is outside [0, " << L << "]";
+    throw std::invalid_argument(os.str());
+  }
+  const int ne = beam.num_nodes - 1;
+  const double le = beam.element_length;
+  BeamPoint p;
+  p.element = std::clamp(static_cast<int>(std::floor(s / le)), 0, ne - 1);
+  p.xi = std::clamp((s - p.element * le) / le, 0.0, 1.0);
+  return p;
+}
+
+BeamPointWeights point_weights(const BeamSystem& beam, double s) {
+  const BeamPoint p = locate_on_beam(beam, s);
+  const double le = beam.element_length;
+  BeamPointWeights out;
+  out.w = hermite::N(p.xi, le).transpose();
+  out.dw_ds = hermite::dN_ds(p.xi, le).transpose();
+  out.d2w_ds2 = hermite::d2N_ds2(p.xi, le).transpose();
+  for (int a = 0; a < 4; ++a) out.free_index[a] = beam.full_to_free[2 * p.element + a];
+  return out;
+}
+
+double deflection_at(const BeamSystem& beam, const Eigen::VectorXd& q, double s) {
+  if (q.size() != static_cast<Eigen::Index>(beam.free_dof.size())) {
+    throw std::invalid_argument("beam '" + beam.name + "': q has " + std::to_string(q.size()) +
+                                " entries, expected " + std::to_string(beam.free_dof.size()) +
+                                " (free DOFs in contract order)");
+  }
+  const BeamPointWeights wts = point_weights(beam, s);
+  double w = 0.0;
+  for (int a = 0; a < 4; ++a) {
+    if (wts.free_index[a] >= 0) w += wts.w[a] * q[wts.free_index[a]];
+  }
+  return w;
+}
+
+}  // namespace mbfe::runtime

@@ -1,0 +1,29 @@
+// Planar Euler-Bernoulli bending element with Hermite cubic interpolation
+// (hermite_shape.h). DOFs [w1, w1', w2, w2'].
+#pragma once
+
+#include "fem/beam_element.h"
+
+namespace mbfe::runtime {
+
+class HermiteBeamElement final : public BeamElement {
+ public:
+  /// @param le element length (m) @param EI bending stiffness (N m^2)
+  /// @param rhoA mass per length (kg/m) @param lumping consistent mass
+  /// rho A le / 420 [156 ...] or lumped (row-sum-free HRZ diagonal: rho A le / 2
+  /// on w, rho A le^3 / 78 on w'). All must be > 0 (asserted by the factory).
+  HermiteBeamElement(double le, double EI, double rhoA, model::MassLumping lumping);
+
+  int node_dofs() const override { return 2; }
+  Eigen::MatrixXd stiffness() const override;
+  Eigen::MatrixXd mass() const override;
+  Eigen::VectorXd uniform_load(double q) const override;
+
+ private:
+  double le_;
+  double EI_;
+  double rhoA_;
+  model::MassLumping lumping_;
+};
+
+}  // namespace mbfe::runtime

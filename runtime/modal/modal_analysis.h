@@ -1,0 +1,59 @@
+// Modal analysis K Phi = M Phi Omega^2 (eqs (20)-(22) of the paper) with
+// mass-normalised modes, Phi^T M Phi = I.
+//
+// Two paths:
+//  - dense (Eigen::GeneralizedSelfAdjointEigenSolver): every mode; forms
+//    dense n x n copies of M and K, so only for small models;
+//  - sparse shift-invert Lanczos (Spectra::SymGEigsShiftSolver with a sparse
+//    LDLT of K - sigma M): the lowest k modes of a large model, memory
+//    O(nnz + n k), never a dense n x n matrix.
+// Mode signs are fixed so that the first significant entry (above 1e-3 of the
+// largest) of each column of Phi is positive, so the two paths agree column
+// by column.
+#pragma once
+
+#include <Eigen/SparseCore>
+#include <optional>
+
+#include "fem/beam_system.h"
+#include "modal/modal_basis.h"
+
+namespace mbfe::runtime {
+
+/// Every mode, dense. @param M, K symmetric n x n, M positive definite.
+/// @throws std::runtime_error if the eigen-solver fails (M not positive definite).
+ModalBasis modal_dense(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& K);
+
+struct SparseModalOptions {
+  /// Shift sigma (rad^2/s^2): the modes nearest sigma are found. Must lie
+  /// below the lowest eigenvalue for "the lowest k" to hold; a small negative
+  /// value also copes with rigid-body (omega = 0) modes.
+  double shift = 0.0;
+  /// Lanczos subspace size; 0 = min(n, max(2k + 1, k + 20)).
+  int subspace = 0;
+  double tolerance = 1e-10;  // relative, on the Ritz values
+  int max_restarts = 1000;
+};
+
+/// The lowest k modes by sparse shift-invert Lanczos. @param k 1 <= k < n.
+/// @throws std::invalid_argument on bad k or sizes; std::runtime_error if
+/// K - sigma M cannot be factorised or Lanczos does not converge.
+ModalBasis modal_sparse(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& K,
+                        int k, const SparseModalOptions& options = {});
+
+struct ModalOptions {
+  /// 0 = every mode; otherwise the lowest num_modes.
+  int num_modes = 0;
+  /// Models with more DOFs than this use the sparse path (and need
+  /// num_modes > 0); smaller ones use the dense path.
+  int dense_limit = 2000;
+};
+
+/// Modal analysis of one assembled beam, choosing the path by size. The
+/// sparse path shifts by -1e-2 times a lower estimate of the beam's lowest
+/// eigenvalue (from its element stiffness/mass ratio), so beams with rigid
+/// modes work too. @throws std::invalid_argument when a model above
+/// dense_limit asks for every mode.
+ModalBasis modal_analysis(const BeamSystem& beam, const ModalOptions& options = {});
+
+}  // namespace mbfe::runtime
