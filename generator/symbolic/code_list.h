@@ -1,0 +1,61 @@
+// A straight-line program under construction: named intermediates defined once,
+// structurally equal expressions defined only once (value numbering on GiNaC's
+// structural hash and equality), and the kernels that read them.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace mbfe::gen {
+
+/// One `const double lhs = rhs;` statement.
+struct Assignment {
+  GiNaC::symbol lhs;
+  GiNaC::ex rhs;
+};
+
+/// One output of a kernel: `target = value;`, e.g. `M[3] = t7;`.
+struct KernelOutput {
+  std::string target;
+  GiNaC::ex value;
+};
+
+/// A generated function: its statements (only those its outputs need, in
+/// definition order) and its outputs.
+struct Kernel {
+  std::string name;       // C++ function name
+  std::string signature;  // parameter list, e.g. "const double* q, double* M"
+  std::string doc;        // one-line comment above the function
+  std::vector<Assignment> statements;
+  std::vector<KernelOutput> outputs;
+};
+
+class CodeList {
+ public:
+  /// Returns `value` itself when printing it costs nothing (a number or a
+  /// symbol); otherwise a temporary that holds it, shared with every earlier
+  /// call for a structurally equal value.
+  GiNaC::ex define(const GiNaC::ex& value);
+
+  const std::vector<Assignment>& assignments() const { return assignments_; }
+
+  /// The statements that `outputs` depend on, in definition order.
+  std::vector<Assignment> closure(const std::vector<KernelOutput>& outputs) const;
+
+ private:
+  std::vector<Assignment> assignments_;
+  std::unordered_map<GiNaC::ex, std::size_t, std::hash<GiNaC::ex>, GiNaC::ex_is_equal> by_value_;
+  std::unordered_map<GiNaC::ex, std::size_t, std::hash<GiNaC::ex>, GiNaC::ex_is_equal> by_symbol_;
+};
+
+/// True for numbers and symbols: things printed without an operation.
+bool is_atomic(const GiNaC::ex& e);
+
+/// The exact rational equal to a finite double (doubles are dyadic rationals),
+/// so that the derivation loses no digits and prunes products with 0 and 1.
+GiNaC::numeric exact(double value);
+
+}  // namespace mbfe::gen

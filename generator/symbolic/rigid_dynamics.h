@@ -1,0 +1,53 @@
+// Closed-form equations of motion of a planar tree of rigid bodies,
+//   M(q) q'' + F(q, q') = Q(q, q', t)          (eq (6) of the paper)
+// as straight-line kernels.
+//
+// Kinematics are built recursively from the ground outwards (eqs (2)-(4)):
+// absolute angle, joint origin, velocities and the velocity-product
+// accelerations of every body, each a named intermediate. F and Q come from
+// the Newton-Euler equations (5) with the successors' joint forces eliminated
+// by a backward pass (the recursive Newton-Euler algorithm with q'' = 0), so
+// they cost O(N). M comes from composite bodies (the mass, first and second
+// moments of each subtree, also by a backward pass), so each entry costs a
+// handful of operations. Nothing is ever inverted symbolically: the runtime
+// factors M numerically.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <vector>
+
+#include "model/model.h"
+#include "symbolic/code_list.h"
+
+namespace mbfe::gen {
+
+/// A planar vector of expressions.
+struct Vec2x {
+  GiNaC::ex x, y;
+};
+
+/// Symbols and kernels of a model's rigid part.
+struct RigidDerivation {
+  std::vector<GiNaC::symbol> q, qd;  // one per body, model order
+  GiNaC::symbol t{"t"};
+  CodeList code;
+  /// Per body: frame origin, absolute angle's cosine and sine (ground frame).
+  std::vector<Vec2x> origin;
+  std::vector<GiNaC::ex> cos_angle, sin_angle;
+  Kernel mass_matrix, inertial_forces, generalized_forces;
+  /// One kernel per named point: body b, point p -> ground-frame position.
+  struct PointKernel {
+    int body, point;
+    Kernel kernel;
+  };
+  std::vector<PointKernel> points;
+};
+
+/// Derives the kernels of `model` (bodies and rigid loads).
+void derive_rigid_dynamics(const model::Model& model, RigidDerivation& out);
+
+/// Ground-frame position of a body-frame point of body `b` (an expression in q).
+Vec2x body_point(RigidDerivation& d, const model::Model& model, int b, const model::Vec2& local);
+
+}  // namespace mbfe::gen

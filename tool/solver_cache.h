@@ -1,0 +1,36 @@
+// Solvers for models not known at build time: generated, compiled with this
+// build's compiler and flags into a shared library, cached, and loaded.
+//
+// Cache layout: <cache>/<key>/solver.so and <key>/solver.so.sha256, where key
+// is the SHA-256 of the generated sources, the generator version, the
+// compiler and its flags (content-addressed: a changed model or toolchain
+// gets a new entry). An entry is built in a private temporary folder and
+// renamed into place in one step, so concurrent processes never see half of
+// one; a corrupted entry (checksum mismatch) is discarded and rebuilt.
+#pragma once
+
+#include <string>
+
+#include "mbfe_model_abi.h"
+#include "model/model.h"
+
+namespace mbfe::tool {
+
+struct LoadedSolver {
+  const mbfe_model_v1* model = nullptr;  // owned by the loaded library (never unloaded)
+  std::string library_path;
+  bool compiled_now = false;  // false: reused from the cache
+  double compile_seconds = 0.0;
+};
+
+/// The cache folder: $MBFE_CACHE_DIR, else $XDG_CACHE_HOME/mbfe, else
+/// $HOME/.cache/mbfe, else /tmp/mbfe-cache-<uid>.
+std::string solver_cache_dir();
+
+/// Generates, compiles (when not cached) and loads the solver of `model`.
+/// Prints one line on stderr about the cache unless `quiet`.
+/// @throws std::runtime_error with the compiler's message when compiling fails
+/// (nothing is left behind in the cache).
+LoadedSolver load_solver(const model::Model& model, bool quiet);
+
+}  // namespace mbfe::tool
