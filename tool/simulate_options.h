@@ -19,6 +19,7 @@ struct SimulateOptions {
   std::optional<bool> adjust;          // --adjust on|off; absent = model decides
   std::vector<std::string> probes;     // --probe beam1@0.5 (beam models)
   std::optional<double> rho_inf;       // generalized-alpha spectral radius
+  long long every = 0;                 // write every N-th step; 0 = automatic
 };
 
 /// Beam-only models (no bodies). Returns the exit status (0, 2 or 3).

@@ -1,0 +1,44 @@
+#include "csv_output.h"
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+namespace mbfe::tool {
+
+namespace {
+constexpr std::size_t kFlushEveryRows = 256;  // bounded loss window even if the process is killed
+}
+
+CsvOutput::CsvOutput(const std::string& path) : path_(path) {
+  if (path.empty()) {
+    file_ = stdout;
+  } else {
+    file_ = std::fopen(path.c_str(), "w");
+    if (!file_) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+    owned_ = true;
+  }
+}
+
+CsvOutput::~CsvOutput() {
+  if (!file_) return;
+  std::fflush(file_);
+  if (owned_) std::fclose(file_);
+}
+
+void CsvOutput::header(const std::vector<std::string>& columns) {
+  for (std::size_t i = 0; i < columns.size(); ++i) std::fprintf(file_, "%s%s", i ? "," : "", columns[i].c_str());
+  std::fputc('\n', file_);
+}
+
+void CsvOutput::row(const double* values, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) std::fprintf(file_, "%s%.17g", i ? "," : "", values[i]);
+  std::fputc('\n', file_);
+  if (++rows_ % kFlushEveryRows == 0) flush();
+}
+
+void CsvOutput::flush() {
+  if (std::fflush(file_) != 0) throw std::runtime_error(path_ + ": write failed: " + std::strerror(errno));
+}
+
+}  // namespace mbfe::tool

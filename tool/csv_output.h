@@ -1,0 +1,33 @@
+// CSV output of a simulation that never loses what it has: rows go straight to
+// the file, which is flushed every few rows and on every exit path.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace mbfe::tool {
+
+class CsvOutput {
+ public:
+  /// Opens `path` for writing, or stdout when `path` is empty.
+  /// @throws std::runtime_error naming the path if it cannot be opened.
+  explicit CsvOutput(const std::string& path);
+  ~CsvOutput();
+  CsvOutput(const CsvOutput&) = delete;
+  CsvOutput& operator=(const CsvOutput&) = delete;
+
+  void header(const std::vector<std::string>& columns);
+  /// One row; numbers printed with 17 significant digits (%.17g).
+  void row(const double* values, std::size_t count);
+  void flush();
+  std::size_t rows() const { return rows_; }
+
+ private:
+  std::FILE* file_ = nullptr;
+  bool owned_ = false;
+  std::size_t rows_ = 0;
+  std::string path_;
+};
+
+}  // namespace mbfe::tool
