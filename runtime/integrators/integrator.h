@@ -48,6 +48,17 @@ class LinearSecondOrderSystem : public OdeSystem {
   /// distinct (a, b, c) and reuse the factor. @throws std::runtime_error if singular.
   virtual void solve_combination(double a, double b, double c, const Eigen::VectorXd& r,
                                  Eigen::VectorXd& x) = 0;
+
+  int size() const override { return 2 * dof(); }
+  /// Default: ydot = [v; M^-1 (P - C v - K q)] through the members above.
+  void rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) override;
+  /// Exact: (I - c J) x = b with J = [0 I; -M^-1 K -M^-1 C] reduces to
+  /// (M + c C + c^2 K) x_v = M b_v - c K b_q, x_q = b_q + c x_v.
+  void solve_shifted(double t, const Eigen::VectorXd& y, double c, const Eigen::VectorXd& b,
+                     Eigen::VectorXd& x) override;
+
+ private:
+  Eigen::VectorXd w1_, w2_, w3_;  // scratch of the default rhs / solve_shifted
 };
 
 /// Coefficients of sum_{i=0..k} alpha_i y_{n+i} = h sum_{i=0..k} beta_i f_{n+i};
