@@ -13,9 +13,9 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <map>
 #include <new>
 #include <sstream>
+#include <unordered_map>
 #include <sys/stat.h>
 
 #include "model/sha256.h"
@@ -85,17 +85,13 @@ class ModelParser {
   }
 
   int body_index(const std::string& name) const {
-    for (std::size_t i = 0; i < model_.bodies.size(); ++i) {
-      if (model_.bodies[i].name == name) return static_cast<int>(i);
-    }
-    return -1;
+    const auto it = body_by_name_.find(name);
+    return it == body_by_name_.end() ? -1 : it->second;
   }
 
   int beam_index(const std::string& name) const {
-    for (std::size_t i = 0; i < model_.beams.size(); ++i) {
-      if (model_.beams[i].name == name) return static_cast<int>(i);
-    }
-    return -1;
+    const auto it = beam_by_name_.find(name);
+    return it == beam_by_name_.end() ? -1 : it->second;
   }
 
   /// A reference to an existing body by name, e.g. a load's `body:`.
@@ -108,10 +104,8 @@ class ModelParser {
 
   int existing_point(const MapView& view, const Field& field, int body) const {
     const std::string name = view.identifier(field, limits_.max_name_length);
-    const std::vector<NamedPoint>& points = model_.bodies[body].points;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      if (points[i].name == name) return static_cast<int>(i);
-    }
+    const auto& points = point_by_name_[body];
+    if (const auto it = points.find(name); it != points.end()) return it->second;
     view.fail(field.value_loc, view.prefixed("body " + quoted(model_.bodies[body].name) +
                                              " has no point " + quoted(name)));
   }
@@ -133,18 +127,24 @@ class ModelParser {
   void parse_bodies(const MapView& top, const Field& field) {
     const auto items = bounded_list(top, field, limits_.max_bodies, "max_bodies");
     for (std::size_t i = 0; i < items.size(); ++i) {
-      MapView view(file_, items[i], "body #" + std::to_string(i + 1), "", field.value_loc);
+      const MapView view(file_, items[i], item_context(items[i], "body", i, limits_.max_name_length),
+                   "", field.value_loc);
       model_.bodies.push_back(parse_body(view));
+      const Body& body = model_.bodies.back();
+      body_by_name_.emplace(body.name, static_cast<int>(i));
+      auto& points = point_by_name_.emplace_back();
+      for (std::size_t k = 0; k < body.points.size(); ++k) {
+        points.emplace(body.points[k].name, static_cast<int>(k));
+      }
     }
   }
 
-  Body parse_body(MapView& view) {
+  Body parse_body(const MapView& view) {
     view.allow({"name", "parent", "joint", "mass", "inertia", "com", "points"});
     Body body;
     body.loc = view.loc();
     const Field& name = view.require("name");
     body.name = view.identifier(name, limits_.max_name_length);
-    view.set_context("body " + quoted(body.name));
     claim_coordinate_name(view, name, body.name);
 
     const Field& parent = view.require("parent");
@@ -259,19 +259,20 @@ class ModelParser {
   void parse_beams(const MapView& top, const Field& field) {
     const auto items = top.list(field);
     for (std::size_t i = 0; i < items.size(); ++i) {
-      MapView view(file_, items[i], "beam #" + std::to_string(i + 1), "", field.value_loc);
+      const MapView view(file_, items[i], item_context(items[i], "beam", i, limits_.max_name_length),
+                   "", field.value_loc);
       model_.beams.push_back(parse_beam(view));
+      beam_by_name_.emplace(model_.beams.back().name, static_cast<int>(i));
     }
   }
 
-  Beam parse_beam(MapView& view) {
+  Beam parse_beam(const MapView& view) {
     view.allow({"name", "origin", "angle", "length", "elements", "section", "material",
                 "supports", "damping", "loads", "adjustment", "mass"});
     Beam beam;
     beam.loc = view.loc();
     const Field& name = view.require("name");
     beam.name = view.identifier(name, limits_.max_name_length);
-    view.set_context("beam " + quoted(beam.name));
     claim_coordinate_name(view, name, beam.name);
 
     beam.origin = view.vec2(view.require("origin"));
@@ -454,15 +455,15 @@ class ModelParser {
 
   void parse_contacts(const MapView& top, const Field& field) {
     const auto items = top.list(field);
-    std::map<std::string, SourceLoc> names;
+    std::unordered_map<std::string, SourceLoc> names;
     for (std::size_t i = 0; i < items.size(); ++i) {
-      MapView view(file_, items[i], "contact #" + std::to_string(i + 1), "", field.value_loc);
+      const MapView view(file_, items[i], item_context(items[i], "contact", i, limits_.max_name_length),
+                   "", field.value_loc);
       view.allow({"name", "type", "body", "point", "beam", "at"});
       Contact contact;
       contact.loc = view.loc();
       const Field& name = view.require("name");
       contact.name = view.identifier(name, limits_.max_name_length);
-      view.set_context("contact " + quoted(contact.name));
       const auto [it, inserted] = names.emplace(contact.name, name.value_loc);
       if (!inserted) {
         view.fail(name.value_loc, view.prefixed("duplicate contact name (first used at line " +
@@ -498,9 +499,9 @@ class ModelParser {
     contact.at = view.number(at_field);
     if (contact.at < 0.0 || contact.at > length) {
       view.fail(at_field.value_loc,
-                view.prefixed("at must be within [0, " + format_number(length) + "] (beam " +
-                              quoted(model_.beams[contact.beam].name) + "'s length; got " +
-                              shown(at_field.value.Scalar()) + ")"));
+                view.prefixed("at must be within [0, " + format_number(length) +
+                              "], the length of beam " + quoted(model_.beams[contact.beam].name) +
+                              " (got " + shown(at_field.value.Scalar()) + ")"));
     }
   }
 
@@ -543,7 +544,11 @@ class ModelParser {
   const std::string& file_;
   const ParseLimits& limits_;
   Model& model_;
-  std::map<std::string, SourceLoc> coordinate_names_;
+  // Name -> index lookups, so that a model of many bodies parses in linear time.
+  std::unordered_map<std::string, SourceLoc> coordinate_names_;
+  std::unordered_map<std::string, int> body_by_name_;
+  std::unordered_map<std::string, int> beam_by_name_;
+  std::vector<std::unordered_map<std::string, int>> point_by_name_;  // per body
   long long total_beam_dofs_ = 0;
 };
 
@@ -596,7 +601,8 @@ Model parse_model_text(const std::string& text, const std::string& display_path,
   if (auto problem = find_non_text(text)) {
     throw ModelError(display_path, problem->loc, problem->message);
   }
-  if (auto problem = find_excess_nesting(text, limits.max_nesting_depth)) {
+  if (auto problem =
+          find_excess_structure(text, limits.max_nesting_depth, limits.max_yaml_values)) {
     throw ModelError(display_path, problem->loc, problem->message);
   }
   try {

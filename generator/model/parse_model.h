@@ -34,6 +34,10 @@ struct ParseLimits {
   /// Collections nested deeper than this are refused before yaml-cpp, whose
   /// recursive parser could otherwise exhaust the stack; real models nest 5.
   int max_nesting_depth = 64;
+  /// YAML values (scalars and collections) in the file, estimated before
+  /// yaml-cpp builds its tree at about 500 bytes per value: 250,000 is several
+  /// times a 2000-body chain and bounds the tree near 125 MB.
+  long max_yaml_values = 250000;
 };
 
 /// Reads and validates `path`. @throws ModelError on any problem, with the

@@ -77,13 +77,19 @@ std::optional<TextProblem> find_non_text(const std::string& text) {
   return std::nullopt;
 }
 
-std::optional<TextProblem> find_excess_nesting(const std::string& text, int max_depth) {
+std::optional<TextProblem> find_excess_structure(const std::string& text, int max_depth,
+                                                 long max_values) {
   const auto too_deep = [&](int line, int column, int depth) {
     return TextProblem{{line, column},
                        "collections nest " + std::to_string(depth) +
                            " levels deep here, more than the limit of " +
                            std::to_string(max_depth)};
   };
+  const auto too_many = [&](int line, int column) {
+    return TextProblem{{line, column}, "the file holds more than " + std::to_string(max_values) +
+                                           " YAML values (ParseLimits::max_yaml_values)"};
+  };
+  long values = 0;  // estimated from separators; each opens at most one value
   std::vector<int> block_indents;  // strictly increasing indentation levels
   int flow_depth = 0;
   char quote = 0;                  // the open quote character, 0 when none
@@ -119,11 +125,12 @@ std::optional<TextProblem> find_excess_nesting(const std::string& text, int max_
       i = indent;
       while (i < row.size() && row[i] == '-' &&
              (i + 1 == row.size() || row[i + 1] == ' ' || row[i + 1] == '\r')) {
-        ++depth;
+        if (++depth > max_depth) return too_deep(line, static_cast<int>(i) + 1, depth);
+        if (++values > max_values) return too_many(line, static_cast<int>(i) + 1);
         i += 2;
         while (i < row.size() && row[i] == ' ') ++i;
       }
-      if (depth > max_depth) return too_deep(line, static_cast<int>(i) + 1, depth);
+      if (depth > max_depth) return too_deep(line, static_cast<int>(indent) + 1, depth);
     }
 
     const int base_depth = static_cast<int>(block_indents.size());
@@ -150,6 +157,10 @@ std::optional<TextProblem> find_excess_nesting(const std::string& text, int max_
         quote = c;
         continue;
       }
+      const bool separator = c == ',' || c == '[' || c == '{' ||
+                             (c == ':' && (i + 1 == row.size() || row[i + 1] == ' ' ||
+                                           row[i + 1] == '\r' || flow_depth > 0));
+      if (separator && ++values > max_values) return too_many(line, static_cast<int>(i) + 1);
       if ((c == '[' || c == '{') && (flow_depth > 0 || opens_node_after(last))) {
         ++flow_depth;
         if (base_depth + flow_depth > max_depth) {

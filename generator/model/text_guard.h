@@ -2,7 +2,8 @@
 //
 // yaml-cpp parses nested collections recursively, so a file of a million `[`
 // could exhaust the stack; it also takes any bytes. This scan rejects what is
-// not text and what nests absurdly deep, cheaply and without recursion.
+// not text, what nests absurdly deep and what would make yaml-cpp allocate
+// gigabytes, cheaply and without recursion.
 #pragma once
 
 #include <optional>
@@ -24,9 +25,13 @@ std::optional<TextProblem> find_non_text(const std::string& text);
 
 /// Returns the first place where collections nest deeper than `max_depth`,
 /// counting flow brackets `[` `{`, block indentation levels and compact
-/// sequence dashes (`- - x`). A heuristic scanner, not a YAML parser: quoted
-/// strings, comments and block scalars are skipped so that brackets in text do
-/// not count; it may over-count only on unbalanced brackets in plain scalars.
-std::optional<TextProblem> find_excess_nesting(const std::string& text, int max_depth);
+/// sequence dashes (`- - x`), or where the file holds more than `max_values`
+/// YAML values (yaml-cpp spends about 500 bytes on each: a 16 MiB file of
+/// `0,0,0,...` would take 4 GB). A heuristic scanner, not a YAML parser:
+/// quoted strings, comments and block scalars are skipped so that brackets in
+/// text do not count; values are estimated from their separators (`,` `:` `-`
+/// `[` `{`), which over-counts only a little.
+std::optional<TextProblem> find_excess_structure(const std::string& text, int max_depth,
+                                                 long max_values);
 
 }  // namespace mbfe::model

@@ -43,8 +43,12 @@ bool parse_double(const std::string& text, double& value, std::string& why) {
     why = yaml_special ? "a finite number" : "a number";
     return false;
   }
-  if (error == std::errc::result_out_of_range || !std::isfinite(value)) {
+  if (error == std::errc::result_out_of_range) {
     why = "a finite number within the range of a double";
+    return false;
+  }
+  if (!std::isfinite(value)) {  // from_chars reads "nan" and "inf" too
+    why = "a finite number";
     return false;
   }
   return true;
@@ -102,6 +106,19 @@ std::string format_number(double value) {
   return out.str();
 }
 
+std::string item_context(const YAML::Node& item, const std::string& kind, std::size_t index,
+                         std::size_t max_name_length) {
+  if (item.IsMap()) {
+    for (auto it = item.begin(); it != item.end(); ++it) {
+      if (it->first.IsScalar() && it->first.Scalar() == "name" && it->second.IsScalar() &&
+          identifier_problem(it->second.Scalar(), max_name_length).empty()) {
+        return kind + " '" + it->second.Scalar() + "'";
+      }
+    }
+  }
+  return kind + " #" + std::to_string(index + 1);
+}
+
 std::string identifier_problem(const std::string& name, std::size_t max_length) {
   if (name.size() > max_length) {
     return "is " + std::to_string(name.size()) + " characters long, more than the limit of " +
@@ -130,19 +147,21 @@ MapView::MapView(const std::string& file, const YAML::Node& node, std::string co
     field.value = it->second;
     field.key_loc = location_of(field.key_node);
     if (field.key_loc.line == 0) field.key_loc = loc_;
-    field.value_loc = location_of(field.value);
+    // yaml-cpp marks an empty value (`mass:` alone) at the next token, often
+    // on a later line; the key is the place to point at.
+    field.value_loc = field.value.IsNull() ? SourceLoc{} : location_of(field.value);
     if (field.value_loc.line == 0) field.value_loc = field.key_loc;
     if (!field.key_node.IsScalar()) {
       fail(field.key_loc, "expected a plain key " + where() + ", got " +
                               describe(field.key_node));
     }
     field.key = field.key_node.Scalar();
-    for (const Field& earlier : fields_) {
-      if (earlier.key == field.key) {
-        fail(field.key_loc, "duplicate key '" + shown(field.key) + "' " + where() +
-                                " (first given at line " +
-                                std::to_string(earlier.key_loc.line) + ")");
-      }
+    // A hash, not a scan: `points:` or `initial.q:` may hold many keys.
+    const auto [earlier, inserted] = index_.emplace(field.key, fields_.size());
+    if (!inserted) {
+      fail(field.key_loc, "duplicate key '" + shown(field.key) + "' " + where() +
+                              " (first given at line " +
+                              std::to_string(fields_[earlier->second].key_loc.line) + ")");
     }
     fields_.push_back(std::move(field));
   }
@@ -160,10 +179,8 @@ void MapView::allow(std::initializer_list<const char*> allowed) const {
 }
 
 const Field* MapView::find(const std::string& key) const {
-  for (const Field& field : fields_) {
-    if (field.key == key) return &field;
-  }
-  return nullptr;
+  const auto it = index_.find(key);
+  return it == index_.end() ? nullptr : &fields_[it->second];
 }
 
 const Field& MapView::require(const std::string& key) const {

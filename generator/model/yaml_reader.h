@@ -9,6 +9,7 @@
 
 #include <initializer_list>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "model/model.h"
@@ -51,9 +52,6 @@ class MapView {
 
   /// @throws ModelError at the first key not in `allowed`.
   void allow(std::initializer_list<const char*> allowed) const;
-
-  /// Renames the thing in later messages (once its name is known).
-  void set_context(std::string context) { context_ = std::move(context); }
 
   const Field* find(const std::string& key) const;
   /// @throws ModelError at the map if `key` is missing.
@@ -99,7 +97,15 @@ class MapView {
   std::string path_;
   SourceLoc loc_;
   std::vector<Field> fields_;
+  std::unordered_map<std::string, std::size_t> index_;  // key -> position in fields_
 };
+
+/// How messages name the `index`-th (0-based) item of a list of `kind`s:
+/// by its `name:` when that is a valid identifier ("body 'link1'"), else by
+/// position ("body #3"), so that even a key error before the name is read
+/// says which item.
+std::string item_context(const YAML::Node& item, const std::string& kind, std::size_t index,
+                         std::size_t max_name_length);
 
 /// Validates a name given in an identifier-like role outside a MapView (the
 /// keys of `points:` and `initial.q:`). Returns the empty string when fine,

@@ -1,0 +1,185 @@
+// Every file of tests/malformed/ must be refused with a located, named error,
+// quickly, and without crashing (issue 6).
+//
+// Each corpus file starts with two comment lines:
+//   # expect: <a substring of the error message>
+//   # at: LINE:COL        (the 1-based location the error must carry)
+// The files, by issue-6 category:
+// - truncated YAML and broken syntax: truncated_flow_map, truncated_quoted_string,
+//   truncated_mid_body, tab_indentation, undefined_alias, long_key_over_yaml_limit,
+//   two_documents, only_comments (an empty model), top_is_list, top_is_scalar
+// - wrong types: mass_is_map, mass_is_quoted_string, mass_is_word, mass_is_list, mass_empty,
+//   bodies_not_list, gravity_three_components, gravity_scalar, com_scalar, joint_not_map,
+//   elements_fraction, name_is_list, points_as_list, torque_value_vector,
+//   force_value_scalar, step_quoted, hex_number
+// - NaN and infinities: mass_nan, inertia_inf, gravity_minus_inf, length_overflow (1e999),
+//   joint_at_nan_word, huge_digit_string
+// - negative or zero sizes: mass_negative, inertia_negative, beam_length_zero,
+//   beam_length_negative, elements_zero, elements_negative, youngs_modulus_zero,
+//   density_negative, section_side_zero, section_area_negative, section_inertia_missing,
+//   section_shape_and_area, rayleigh_alpha_negative, step_zero, t_end_negative,
+//   omega_limit_zero, margin_negative, zeta_min_one, adjustment_unknown_policy,
+//   prismatic_zero_axis, prismatic_without_axis, revolute_with_axis,
+//   spring_negative_stiffness
+// - unknown or duplicate names and keys: unknown_body_key, unknown_top_key,
+//   unknown_joint_type, unknown_parent, unknown_load_body, unknown_load_point,
+//   unknown_load_type, unknown_initial_body, unknown_integrator, unknown_support_type,
+//   missing_mass, missing_model, missing_joint_type, duplicate_key, duplicate_body,
+//   duplicate_point, beam_named_like_body, duplicate_contact, body_named_ground,
+//   no_bodies_no_beams
+// - cycles: own_parent, cycle_two_bodies
+// - a support or load off the nodes: support_off_node, support_outside_beam,
+//   support_twice_on_node, beam_load_off_node, beam_load_negative_position
+// - contacts: contact_missing_beam, contact_at_outside_beam, slider_pin_with_at,
+//   contact_unknown_point, pin_without_at
+// - resource limits: elements_hundred_million, total_dofs_over_limit, and the
+//   10,000-body chain generated below (TenThousandBodyChain)
+// - names that are not identifiers, C++ keywords: name_with_dash, name_starts_with_digit,
+//   name_keyword_int, model_name_class, model_name_code_injection, name_unicode,
+//   name_double_underscore, name_too_long, point_name_with_space, name_true
+// - very long strings: long_string_as_number, long_unknown_key, name_too_long
+// - deep nesting: deep_brackets, deep_braces_unclosed, deep_indentation, deep_dashes
+// - binary garbage and non-text: garbage.bin (written by make_garbage.py), nul_byte,
+//   invalid_utf8, control_character
+// A truly empty (0-byte) file cannot carry the header; parse_model_test covers it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "model/parse_model.h"
+
+namespace mbfe::model {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Each file is refused in well under 10 ms; 2 s leaves room for sanitizer
+// builds on a loaded 2-core CI machine while still catching a hang or a
+// super-linear blow-up (a 16 MiB file or deep recursion would take longer).
+constexpr double kMaxParseSeconds = 2.0;
+
+// Issue 6 asks for at least 60 malformed files; fewer means files were lost.
+constexpr std::size_t kMinCorpusSize = 60;
+
+const fs::path kCorpusDir = fs::path(MBFE_SOURCE_DIR) / "tests" / "malformed";
+
+std::vector<std::string> corpus_files() {
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(kCorpusDir)) {
+    const std::string extension = entry.path().extension().string();
+    if (extension == ".yaml" || extension == ".bin") files.push_back(entry.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+struct Expectation {
+  std::string substring;  // from `# expect: ...`
+  std::string location;   // from `# at: LINE:COL`
+};
+
+/// Reads the two header lines; empty fields when a header is missing.
+Expectation read_header(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string expect_line, at_line;
+  std::getline(in, expect_line);
+  std::getline(in, at_line);
+  const std::string expect_tag = "# expect: ", at_tag = "# at: ";
+  Expectation expectation;
+  if (expect_line.rfind(expect_tag, 0) == 0) expectation.substring = expect_line.substr(expect_tag.size());
+  if (at_line.rfind(at_tag, 0) == 0) expectation.location = at_line.substr(at_tag.size());
+  return expectation;
+}
+
+/// Parses `path`, expecting a ModelError; returns its what() and the time taken.
+std::string refusal_of(const std::string& path, double& seconds, const ParseLimits& limits = {}) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string what;
+  try {
+    load_model_file(path, limits);
+    what = "(accepted)";
+  } catch (const ModelError& error) {
+    what = error.what();
+  }
+  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return what;
+}
+
+class MalformedCorpus : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(MalformedCorpus, RefusedWithLocatedMessageInBoundedTime) {
+  const std::string& path = GetParam();
+  const Expectation expected = read_header(path);
+  ASSERT_FALSE(expected.substring.empty()) << path << ": no '# expect: ' first line";
+  ASSERT_FALSE(expected.location.empty()) << path << ": no '# at: LINE:COL' second line";
+
+  double seconds = 0.0;
+  const std::string what = refusal_of(path, seconds);
+  const std::string prefix = path + ":" + expected.location + ": ";
+  EXPECT_EQ(what.substr(0, prefix.size()), prefix) << "full message: " << what;
+  EXPECT_NE(what.find(expected.substring), std::string::npos)
+      << "expected to contain: " << expected.substring << "\nfull message: " << what;
+  EXPECT_LT(seconds, kMaxParseSeconds);
+}
+
+std::string test_name(const ::testing::TestParamInfo<std::string>& info) {
+  std::string name = fs::path(info.param).filename().string();
+  for (char& c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  }
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Files, MalformedCorpus, ::testing::ValuesIn(corpus_files()), test_name);
+
+TEST(MalformedCorpusSize, HoldsAtLeastSixtyFiles) {
+  EXPECT_GE(corpus_files().size(), kMinCorpusSize);
+}
+
+/// A chain of `n` links, written like models/chain_N.yaml.
+std::string chain_text(int n) {
+  std::ostringstream out;
+  out << "model: chain_" << n << "\nbodies:\n";
+  for (int i = 1; i <= n; ++i) {
+    out << "  - name: link" << i << "\n"
+        << "    parent: " << (i == 1 ? std::string("ground") : "link" + std::to_string(i - 1))
+        << "\n    joint: {type: revolute, at: [" << (i == 1 ? 0.0 : 0.5) << ", 0]}\n"
+        << "    mass: 1\n    inertia: 0.0208\n";
+  }
+  return out.str();
+}
+
+// Generated at test time: 10,000 bodies make a 1 MB file, too big to commit.
+TEST(MalformedCorpusGenerated, TenThousandBodyChain) {
+  const std::string path = ::testing::TempDir() + "/chain_10000.yaml";
+  std::ofstream(path, std::ios::binary) << chain_text(10000);
+  double seconds = 0.0;
+  const std::string what = refusal_of(path, seconds);
+  EXPECT_EQ(what, path +
+                      ":3:3: bodies: 10000 entries, more than the limit of 2000 "
+                      "(ParseLimits::max_bodies)");
+  EXPECT_LT(seconds, kMaxParseSeconds);
+}
+
+// With the limit raised, the same chain is read, and fast: nothing in the
+// parser is quadratic in the number of bodies.
+TEST(MalformedCorpusGenerated, TenThousandBodyChainWithinRaisedLimit) {
+  ParseLimits limits;
+  limits.max_bodies = 10000;
+  const auto start = std::chrono::steady_clock::now();
+  const Model model = parse_model_text(chain_text(10000), "chain_10000.yaml", limits);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(model.bodies.size(), 10000u);
+  EXPECT_EQ(model.bodies.back().parent, 9998);
+  EXPECT_LT(seconds, kMaxParseSeconds);
+}
+
+}  // namespace
+}  // namespace mbfe::model
