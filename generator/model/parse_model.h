@@ -35,9 +35,9 @@ struct ParseLimits {
   /// recursive parser could otherwise exhaust the stack; real models nest 5.
   int max_nesting_depth = 64;
   /// YAML values (scalars and collections) in the file, estimated before
-  /// yaml-cpp builds its tree at about 500 bytes per value: 250,000 is several
-  /// times a 2000-body chain and bounds the tree near 125 MB.
-  long max_yaml_values = 250000;
+  /// yaml-cpp builds its tree, which costs it about 500 bytes and 5 us per
+  /// value: 100,000 is twice a 2000-body model and bounds the tree near 50 MB.
+  long max_yaml_values = 100000;
 };
 
 /// Reads and validates `path`. @throws ModelError on any problem, with the

@@ -85,11 +85,12 @@ std::optional<TextProblem> find_excess_structure(const std::string& text, int ma
                            " levels deep here, more than the limit of " +
                            std::to_string(max_depth)};
   };
-  const auto too_many = [&](int line, int column) {
-    return TextProblem{{line, column}, "the file holds more than " + std::to_string(max_values) +
-                                           " YAML values (ParseLimits::max_yaml_values)"};
-  };
+  // Counting goes on past the limit so that the message can say how many.
   long values = 0;  // estimated from separators; each opens at most one value
+  SourceLoc limit_crossed;
+  const auto count_value = [&](int line, std::size_t column) {
+    if (++values == max_values + 1) limit_crossed = {line, static_cast<int>(column) + 1};
+  };
   std::vector<int> block_indents;  // strictly increasing indentation levels
   int flow_depth = 0;
   char quote = 0;                  // the open quote character, 0 when none
@@ -126,7 +127,7 @@ std::optional<TextProblem> find_excess_structure(const std::string& text, int ma
       while (i < row.size() && row[i] == '-' &&
              (i + 1 == row.size() || row[i + 1] == ' ' || row[i + 1] == '\r')) {
         if (++depth > max_depth) return too_deep(line, static_cast<int>(i) + 1, depth);
-        if (++values > max_values) return too_many(line, static_cast<int>(i) + 1);
+        count_value(line, i);
         i += 2;
         while (i < row.size() && row[i] == ' ') ++i;
       }
@@ -160,7 +161,7 @@ std::optional<TextProblem> find_excess_structure(const std::string& text, int ma
       const bool separator = c == ',' || c == '[' || c == '{' ||
                              (c == ':' && (i + 1 == row.size() || row[i + 1] == ' ' ||
                                            row[i + 1] == '\r' || flow_depth > 0));
-      if (separator && ++values > max_values) return too_many(line, static_cast<int>(i) + 1);
+      if (separator) count_value(line, i);
       if ((c == '[' || c == '{') && (flow_depth > 0 || opens_node_after(last))) {
         ++flow_depth;
         if (base_depth + flow_depth > max_depth) {
@@ -175,6 +176,12 @@ std::optional<TextProblem> find_excess_structure(const std::string& text, int ma
       }
       last = c;
     }
+  }
+  if (values > max_values) {
+    return TextProblem{limit_crossed, "the file holds about " + std::to_string(values) +
+                                          " YAML values, more than the limit of " +
+                                          std::to_string(max_values) +
+                                          " (ParseLimits::max_yaml_values)"};
   }
   return std::nullopt;
 }
