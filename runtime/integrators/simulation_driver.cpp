@@ -7,6 +7,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -124,7 +125,10 @@ SimulationResult run_simulation(OdeSystem& system, const IntegratorSpec& integra
   double running_max = y0_norm;
   double trailing_max = 0.0;  // R: max |y| up to the last power-of-two step
   auto bound_now = [&]() {
-    return options.divergence_factor * std::max({y0_norm, options.reference_norm, trailing_max});
+    const double scale = std::max({y0_norm, options.reference_norm, trailing_max});
+    // No scale yet (a system starting at rest, no reference given): only the
+    // finiteness check applies until the first power-of-two step sets R.
+    return scale > 0.0 ? options.divergence_factor * scale : std::numeric_limits<double>::infinity();
   };
 
   double t = options.t0;

@@ -22,6 +22,9 @@
 // raises R, an instability grows by the factor within a stretch of steps).
 // divergence_factor defaults to 1e6; reference_norm is a scale the caller
 // knows (for a beam: the norm of its static state under the load), 0 if none.
+// While all three are 0 (a system at rest, no reference) only finiteness is
+// checked. Because R follows the run, a slow instability is caught late (in
+// the worst case when it overflows); pass reference_norm to catch it early.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,0 +1,102 @@
+// A beam M q'' + C q' + K q = P (original or modally adjusted) as an OdeSystem
+// the integrators step, in two equivalent forms:
+//
+//  - ModalBeamOde: mass-normalised modal coordinates, q = Phi eta, every mode
+//    decoupled: eta_j'' + c_j eta_j' + k_j eta_j = phi_j^T P. O(n) per
+//    right-hand side. Needs a complete basis (every mode): the same model as
+//    the nodal one, only expressed in other coordinates, and every integrator
+//    here is linear and commutes with that change of variables.
+//  - NodalBeamOde: nodal coordinates with K and C as NodalOperators (sparse,
+//    sparse M + low rank, or eq (27)); M is factorised once (sparse LDLT) when
+//    a sparse part needs it; implicit methods factorise a M + b C + c K once per
+//    step size (Woodbury for the low-rank part).
+//
+// The load P is constant in time (applied from t = 0, as every beam load of
+// the model format).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <memory>
+#include <vector>
+
+#include "damping/modal_adjustment.h"
+#include "integrators/integrator.h"
+#include "modal/modal_basis.h"
+#include "modal/state_spectrum.h"
+
+namespace mbfe::runtime {
+
+class ModalBeamOde final : public LinearSecondOrderSystem {
+ public:
+  /// @param basis complete, mass-normalised (n modes). @param modes k_j, c_j
+  /// per mode (size n). @param M, P the nodal mass matrix and load (N).
+  /// @throws std::invalid_argument on size mismatches or a partial basis.
+  ModalBeamOde(const ModalBasis& basis, const std::vector<ModalDynamics>& modes,
+               const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& P);
+
+  int dof() const override { return static_cast<int>(k_.size()); }
+  void rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) override;
+  void solve_shifted(double t, const Eigen::VectorXd& y, double c, const Eigen::VectorXd& b,
+                     Eigen::VectorXd& x) override;
+  void load(double t, Eigen::VectorXd& out) override;
+  void mult_m(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { out = x; }
+  void mult_c(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { out = c_.cwiseProduct(x); }
+  void mult_k(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { out = k_.cwiseProduct(x); }
+  void solve_combination(double a, double b, double c, const Eigen::VectorXd& r, Eigen::VectorXd& x) override;
+  std::string name(int i) const override;
+
+  /// Nodal state [q; q'] of size 2n -> modal [eta; eta'] (eta = Phi^T M q).
+  Eigen::VectorXd from_nodal(const Eigen::VectorXd& y_nodal) const;
+  /// Modal state -> nodal positions q = Phi eta (n).
+  void positions(const Eigen::VectorXd& y, Eigen::VectorXd& q) const;
+  const Eigen::MatrixXd& phi() const { return phi_; }
+
+ private:
+  Eigen::MatrixXd phi_, mphi_;  // Phi, M Phi
+  Eigen::VectorXd k_, c_, p_;   // per mode; p = Phi^T P
+};
+
+class NodalBeamOde final : public LinearSecondOrderSystem {
+ public:
+  /// Original model: K, C sparse (C = alpha M + beta K).
+  NodalBeamOde(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& K,
+               const Eigen::SparseMatrix<double>& C, const Eigen::VectorXd& P);
+  /// Adjusted model (low-rank or eq (27)).
+  NodalBeamOde(const Eigen::SparseMatrix<double>& M, const NodalAdjusted& adjusted, const Eigen::VectorXd& P);
+
+  int dof() const override { return static_cast<int>(P_.size()); }
+  void rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) override;
+  void load(double, Eigen::VectorXd& out) override { out = P_; }
+  void mult_m(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { out.noalias() = M_ * x; }
+  void mult_c(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { apply(C_, x, out); }
+  void mult_k(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { apply(K_, x, out); }
+  void solve_combination(double a, double b, double c, const Eigen::VectorXd& r, Eigen::VectorXd& x) override;
+  std::string name(int i) const override;
+
+ private:
+  void init();
+  void apply(const NodalOperator& op, const Eigen::VectorXd& x, Eigen::VectorXd& out);
+  void solve_m(const Eigen::VectorXd& r, Eigen::VectorXd& x);
+
+  Eigen::SparseMatrix<double> M_;
+  NodalOperator K_, C_;
+  Eigen::MatrixXd U_, phi_;  // n x m (m = 0 for the original model)
+  Eigen::VectorXd P_, minv_p_;
+  bool sparse_free_ = false;  // K_.S and C_.S absent: rhs needs no M solve
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> m_factor_;
+  bool m_factored_ = false;
+  // Cache of the last (a, b, c) factorisation.
+  double ca_ = 0.0, cb_ = 0.0, cc_ = 0.0;
+  bool cached_ = false;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> a_factor_;
+  Eigen::MatrixXd z_;  // A_s^-1 U
+  Eigen::VectorXd dd_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> small_;
+  // scratch
+  Eigen::VectorXd mx_, ux_, w1_, w2_, w3_, um_;
+};
+
+}  // namespace mbfe::runtime

@@ -1,0 +1,145 @@
+#include "damping/modal_adjustment.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace mbfe::runtime {
+
+double fastest_root(double c, double k) {
+  const auto roots = modal_roots(c, k);
+  return std::max(std::abs(roots.first), std::abs(roots.second));
+}
+
+AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const model::Adjustment& a) {
+  AdjustedModes out;
+  out.modes = modes;
+  out.change.assign(modes.size(), ModeChange::kKept);
+  if (a.policy == model::AdjustmentPolicy::kNone) return out;
+  if (!(a.omega_limit > 0.0))
+    throw std::invalid_argument("adjustment: omega_limit must be > 0 rad/s (got " + std::to_string(a.omega_limit) +
+                                ")");
+  if (!(a.margin >= 0.0))
+    throw std::invalid_argument("adjustment: margin must be >= 0 (got " + std::to_string(a.margin) + ")");
+  if (!(a.zeta_min >= 0.0 && a.zeta_min < 1.0))
+    throw std::invalid_argument("adjustment: zeta_min must be in [0, 1) (got " + std::to_string(a.zeta_min) + ")");
+
+  const double wl = a.omega_limit;
+  const double zeta_cap = 1.0 + 0.5 * a.margin;
+  const double r_cap = (zeta_cap + std::sqrt(zeta_cap * zeta_cap - 1.0)) * wl;
+  out.k_star = wl * wl;
+  out.c_star = (2.0 + a.margin) * wl;
+  out.r_cap = a.policy == model::AdjustmentPolicy::kPaperEq25 ? 0.0 : r_cap;
+  out.uniform = a.policy == model::AdjustmentPolicy::kCap;
+
+  for (std::size_t j = 0; j < modes.size(); ++j) {
+    ModalDynamics& m = out.modes[j];
+    bool adjust = false;
+    if (a.policy == model::AdjustmentPolicy::kPaperEq25) {
+      adjust = m.omega > wl;
+      if (adjust) m.c = (2.0 + a.margin) * m.omega;
+    } else {
+      adjust = fastest_root(m.c, m.k) > wl;
+      if (adjust) {
+        const auto roots = modal_roots(m.c, m.k);
+        const bool real_roots = roots.first.imag() == 0.0;
+        const double slow = std::abs(roots.first);
+        if (a.policy == model::AdjustmentPolicy::kKeepSlow && real_roots && slow < r_cap) {
+          m.k = slow * r_cap;
+          m.c = slow + r_cap;
+          out.uniform = false;
+        } else {
+          m.k = out.k_star;
+          m.c = out.c_star;
+        }
+      }
+    }
+    if (adjust) {
+      out.change[j] = ModeChange::kAdjusted;
+      ++out.adjusted;
+      continue;
+    }
+    const double w = std::sqrt(m.k);
+    if (w > 0.0 && m.c < 2.0 * w && m.c < 2.0 * a.zeta_min * w) {
+      m.c = 2.0 * a.zeta_min * w;
+      out.change[j] = ModeChange::kFloored;
+      ++out.floored;
+    }
+  }
+  if (out.adjusted == 0) out.uniform = true;
+  return out;
+}
+
+void NodalOperator::apply(const Eigen::VectorXd& x, const Eigen::VectorXd& mx, const Eigen::VectorXd& ux,
+                          const Eigen::MatrixXd& U, Eigen::VectorXd& y) const {
+  if (S.size() > 0) {
+    y.noalias() = S * x;
+    if (s != 0.0) y += s * mx;
+  } else if (s != 0.0) {
+    y = s * mx;
+  } else {
+    y.setZero(x.size());
+  }
+  if (d.size() > 0) y.noalias() += U * d.cwiseProduct(ux);
+}
+
+NodalAdjusted low_rank_adjusted(const Eigen::SparseMatrix<double>& M, const ModalBasis& basis,
+                                const AdjustedModes& adjusted) {
+  const int k = static_cast<int>(basis.omega.size());
+  if (static_cast<int>(adjusted.modes.size()) != k)
+    throw std::invalid_argument("low_rank_adjusted: " + std::to_string(adjusted.modes.size()) +
+                                " adjusted modes, expected " + std::to_string(k) + " (one per basis mode)");
+  if (!adjusted.uniform)
+    throw std::invalid_argument("the low-rank form needs every adjusted mode to get the same stiffness and "
+                                "damping (policy cap)");
+  int kept = 0;
+  while (kept < k && adjusted.change[kept] != ModeChange::kAdjusted) ++kept;
+  for (int j = kept; j < k; ++j)
+    if (adjusted.change[j] != ModeChange::kAdjusted)
+      throw std::invalid_argument("the low-rank form needs the adjusted modes to be the highest ones; mode " +
+                                  std::to_string(j + 1) + " is kept above an adjusted one");
+  const bool tail = adjusted.adjusted > 0 || !basis.complete;
+  if (!basis.complete && kept == k)
+    throw std::invalid_argument("the partial modal basis (" + std::to_string(k) +
+                                " modes) ends below the adjustment threshold; compute more modes");
+  NodalAdjusted out;
+  out.low_rank = true;
+  out.phi = basis.phi.leftCols(kept);
+  out.U = M * out.phi;
+  const double ks = tail ? adjusted.k_star : 0.0;
+  const double cs = tail ? adjusted.c_star : 0.0;
+  out.K.s = ks;
+  out.C.s = cs;
+  out.K.d.resize(kept);
+  out.C.d.resize(kept);
+  for (int j = 0; j < kept; ++j) {
+    out.K.d[j] = adjusted.modes[j].k - ks;
+    out.C.d[j] = adjusted.modes[j].c - cs;
+  }
+  return out;
+}
+
+NodalAdjusted eq27_adjusted(const Eigen::SparseMatrix<double>& M, const ModalBasis& basis,
+                            const AdjustedModes& adjusted) {
+  if (!basis.complete) throw std::invalid_argument("eq (27) needs every mode (a complete modal basis)");
+  const int k = static_cast<int>(basis.omega.size());
+  NodalAdjusted out;
+  out.phi = basis.phi;
+  out.U = M * basis.phi;
+  out.K.d.resize(k);
+  out.C.d.resize(k);
+  for (int j = 0; j < k; ++j) {
+    out.K.d[j] = adjusted.modes[j].k;
+    out.C.d[j] = adjusted.modes[j].c;
+  }
+  return out;
+}
+
+Eigen::MatrixXd dense_matrix(const NodalOperator& op, const Eigen::SparseMatrix<double>& M, const Eigen::MatrixXd& U) {
+  Eigen::MatrixXd a = op.s * Eigen::MatrixXd(M);
+  if (op.S.size() > 0) a += Eigen::MatrixXd(op.S);
+  if (op.d.size() > 0) a += U * op.d.asDiagonal() * U.transpose();
+  return a;
+}
+
+}  // namespace mbfe::runtime

@@ -1,0 +1,104 @@
+// Modal adjustment of damping (Section 6 of the paper, eqs (24)-(27); read
+// ../shared/docs/method-notes.md section 2 for why the default is a cap).
+//
+// Per mass-normalised mode j (K Phi = M Phi Omega^2) the model obeys
+// q'' + c_j q' + k_j q = p_j, with k_j = omega_j^2 and Rayleigh c_j = alpha +
+// beta omega_j^2. Its roots r1 r2 = k_j, r1 + r2 = -c_j. A policy rewrites
+// (k_j, c_j) of the modes whose fastest root |r_fast| exceeds omega_limit:
+//
+//   cap        k_j = omega_l^2, c_j = (2 + margin) omega_l: a mode at omega_l
+//              with damping ratio 1 + margin/2; fastest root
+//              r_cap = (zeta + sqrt(zeta^2 - 1)) omega_l (1.370156e5 for
+//              omega_l = 1e5, margin 0.1). Reproduces Table 1 (right half).
+//   paper_eq25 eq (25) literally: modes with omega_j > omega_l get
+//              c_j = (2 + margin) omega_j, k_j kept (selection by omega_j, as
+//              the paper writes it).
+//   keep_slow  keep the mode's slow real root r_s, move the fast one to r_cap:
+//              k_j = |r_s| r_cap, c_j = |r_s| + r_cap (falls back to cap when
+//              the mode is oscillatory or |r_s| >= r_cap).
+//   none       nothing.
+// and, for every policy but none, raises oscillatory modes (damping ratio
+// c / (2 sqrt k) < 1) below zeta_min to zeta_min (c_j = 2 zeta_min omega_j).
+//
+// |r_fast| grows with omega_j for Rayleigh damping, so the adjusted modes of
+// `cap` are a tail of the ascending spectrum: the low-rank form of
+// method-notes section 3 needs only the modes below it.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "modal/modal_basis.h"
+#include "modal/state_spectrum.h"
+#include "model/model.h"
+
+namespace mbfe::runtime {
+
+enum class ModeChange : unsigned char { kKept, kFloored, kAdjusted };
+
+struct AdjustedModes {
+  std::vector<ModalDynamics> modes;  // one per input mode, same order
+  std::vector<ModeChange> change;    // what happened to each
+  int adjusted = 0;                  // modes with ModeChange::kAdjusted
+  int floored = 0;                   // modes raised to zeta_min
+  /// Every adjusted mode got the same (k_star, c_star) (policy cap): the
+  /// low-rank form applies.
+  bool uniform = true;
+  double k_star = 0.0;  // 1/s^2 (cap: omega_l^2)
+  double c_star = 0.0;  // 1/s   (cap: (2 + margin) omega_l)
+  double r_cap = 0.0;   // 1/s, modulus of the capped fast root (0 for none/paper_eq25)
+};
+
+/// Modulus of the fastest root of r^2 + c r + k = 0 (sqrt(k) for a complex pair).
+double fastest_root(double c, double k);
+
+/// Applies `adjustment` (policy, omega_limit rad/s, margin, zeta_min) to the
+/// modes. @throws std::invalid_argument if omega_limit <= 0 (any policy but
+/// none), margin < 0 or zeta_min outside [0, 1).
+AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const model::Adjustment& adjustment);
+
+/// A symmetric n x n operator A = S + s M + U diag(d) U^T, with S sparse
+/// (possibly empty), M the mass matrix and U = M Phi_L (n x m) dense: the form
+/// shared by the original K and C (S only), the low-rank adjusted ones
+/// (method-notes section 3: s = k_star, d_j = k_j - k_star over the kept modes)
+/// and eq (27) with every mode (s = 0, d_j = k_j). Never an n x n dense matrix
+/// unless m = n.
+struct NodalOperator {
+  Eigen::SparseMatrix<double> S;  // n x n or 0 x 0 (absent)
+  double s = 0.0;
+  Eigen::VectorXd d;              // m
+  /// y = A x. `mx` is M x (given by the caller, who usually has it already),
+  /// `ux` is U^T x (m).
+  void apply(const Eigen::VectorXd& x, const Eigen::VectorXd& mx, const Eigen::VectorXd& ux,
+             const Eigen::MatrixXd& U, Eigen::VectorXd& y) const;
+};
+
+/// The adjusted beam in nodal coordinates: K_adj and C_adj as NodalOperators
+/// sharing U = M Phi_L.
+struct NodalAdjusted {
+  Eigen::MatrixXd U;    // n x m, M Phi_L
+  Eigen::MatrixXd phi;  // n x m, Phi_L
+  NodalOperator K, C;
+  bool low_rank = false;  // true: method-notes section 3; false: eq (27) over every mode
+};
+
+/// Method-notes section 3: only the modes that are not adjusted (the first
+/// ones; the rest must all be kAdjusted with the uniform cap). Works with a
+/// partial basis when its last mode is already adjusted.
+/// @throws std::invalid_argument if the adjustment is not uniform or an
+/// adjusted mode precedes a kept one, or the basis is partial and its last mode
+/// is kept (the tail beyond it is unknown).
+NodalAdjusted low_rank_adjusted(const Eigen::SparseMatrix<double>& M, const ModalBasis& basis,
+                                const AdjustedModes& adjusted);
+
+/// Eq (27) over a complete basis: K_adj = (M Phi) diag(k) (M Phi)^T, likewise C.
+/// Dense U (n x n): small models only. @throws std::invalid_argument if the basis is partial.
+NodalAdjusted eq27_adjusted(const Eigen::SparseMatrix<double>& M, const ModalBasis& basis,
+                            const AdjustedModes& adjusted);
+
+/// Dense matrices of an operator (tests and small models only).
+Eigen::MatrixXd dense_matrix(const NodalOperator& op, const Eigen::SparseMatrix<double>& M,
+                             const Eigen::MatrixXd& U);
+
+}  // namespace mbfe::runtime
