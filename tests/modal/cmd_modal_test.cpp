@@ -1,0 +1,91 @@
+// `mbfe modal` end to end: runs the built binary (MBFE_CLI) on the shipped
+// models and checks the text and the JSON contract of issue 3.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+struct CliRun {
+  int status = -1;
+  std::string out;
+};
+
+CliRun run_cli(const std::string& args) {
+  const std::string cmd = std::string("cd '") + MBFE_SOURCE_DIR + "' && '" + MBFE_CLI + "' " + args +
+                          " 2>&1";
+  CliRun r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int st = pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+// JSON doubles round-trip exactly; the reference is method-notes' h_max
+// (6 digits: half a unit is 5e-14).
+constexpr double kHmaxPrintedTol = 5e-14;
+
+TEST(CmdModal, JsonHoldsTheContract) {
+  const CliRun r = run_cli("modal models/paper_beam.yaml --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.at("beams").size(), 1u);
+  const nlohmann::json& b = j["beams"][0];
+  EXPECT_EQ(b.at("name"), "beam1");
+  EXPECT_EQ(b.at("dof"), 100);
+  const auto omega = b.at("natural_frequencies_rad_s").get<std::vector<double>>();
+  ASSERT_EQ(omega.size(), 100u);
+  for (size_t i = 1; i < omega.size(); ++i) EXPECT_LT(omega[i - 1], omega[i]);
+  const nlohmann::json& o = b.at("original");
+  const auto& ev = o.at("eigenvalues");
+  ASSERT_EQ(ev.size(), 200u);
+  for (size_t i = 1; i < ev.size(); ++i) {
+    EXPECT_LE(std::hypot(ev[i - 1][0].get<double>(), ev[i - 1][1].get<double>()),
+              std::hypot(ev[i][0].get<double>(), ev[i][1].get<double>()));
+  }
+  EXPECT_EQ(o.at("oscillatory_pairs"), 13);
+  EXPECT_NEAR(o.at("h_max").at("forward_euler").get<double>(), 1.52098e-8, kHmaxPrintedTol);
+}
+
+TEST(CmdModal, TextIsTable1WithASummary) {
+  const CliRun r = run_cli("modal models/paper_beam.yaml");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("f damped [Hz]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("..."), std::string::npos);
+  EXPECT_NE(r.out.find("-1.314938e+08"), std::string::npos);
+  EXPECT_NE(r.out.find("13 oscillatory pairs"), std::string::npos);
+  EXPECT_NE(r.out.find("h_max = 1.52098e-08 s"), std::string::npos);
+  const CliRun all = run_cli("modal models/paper_beam.yaml --all");
+  ASSERT_EQ(all.status, 0);
+  EXPECT_EQ(all.out.find("..."), std::string::npos);
+  EXPECT_NE(all.out.find("\n   150 "), std::string::npos);  // a middle row, hidden without --all
+  EXPECT_EQ(r.out.find("\n   150 "), std::string::npos);
+}
+
+TEST(CmdModal, BadInputExitsWithStatus2) {
+  EXPECT_EQ(run_cli("modal models/double_pendulum.yaml").status, 2);  // no beams
+  const CliRun unknown = run_cli("modal models/paper_beam.yaml --beam nope");
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_NE(unknown.out.find("beam1"), std::string::npos) << unknown.out;
+  EXPECT_EQ(run_cli("modal models/paper_beam.yaml --frobnicate").status, 2);
+  EXPECT_EQ(run_cli("modal --help").status, 0);
+}
+
+TEST(CmdModal, EveryShippedBeamModelRuns) {
+  for (const char* m : {"models/paper_beam_a4.5.yaml", "models/paper_beam_a5.5.yaml",
+                        "models/cantilever.yaml"}) {
+    const CliRun r = run_cli(std::string("modal ") + m + " --json");
+    ASSERT_EQ(r.status, 0) << m << ": " << r.out;
+    EXPECT_GT(nlohmann::json::parse(r.out)["beams"][0]["dof"].get<int>(), 0) << m;
+  }
+}
+
+}  // namespace
