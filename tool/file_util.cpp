@@ -1,6 +1,7 @@
 #include "file_util.h"
 
 #include <openssl/evp.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>

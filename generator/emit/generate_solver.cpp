@@ -76,7 +76,7 @@ std::string banner(const model::Model& model, const std::string& file, const Gen
   if (!solver.operations.empty()) {
     b << "// Operations per kernel (+ - * / and calls):";
     for (const auto& [name, ops] : solver.operations) b << " " << name << " " << ops << ";";
-    b << " total " << solver.total_operations() << ".\n";
+    b << " total " << solver.total_operations() << "; fused dynamics " << solver.fused_operations << ".\n";
   }
   return b.str();
 }
@@ -111,10 +111,12 @@ GeneratedSolver generate_solver(const model::Model& model) {
 
   GeneratedSolver solver;
   std::ostringstream kernels;
-  for (Kernel* k : {&d.mass_matrix, &d.inertial_forces, &d.generalized_forces}) {
+  for (Kernel* k : {&d.mass_matrix, &d.inertial_forces, &d.generalized_forces, &d.dynamics}) {
     eliminate_common_subexpressions(*k);
     const EmittedKernel e = emit_kernel(*k, inputs, params, "");
-    solver.operations.emplace_back(k->name, e.operations);
+    // The fused kernel repeats the other three; count it apart, not in the total.
+    if (k != &d.dynamics) solver.operations.emplace_back(k->name, e.operations);
+    else solver.fused_operations = e.operations;
     kernels << "\n" << e.text;
   }
   std::ostringstream points;
@@ -137,7 +139,8 @@ GeneratedSolver generate_solver(const model::Model& model) {
          << "void mass_matrix(const double* q, double* M);\n"
          << "void inertial_forces(const double* q, const double* qd, double* F);\n"
          << "void generalized_forces(const double* q, const double* qd, double t, double* Q);\n"
-         << "void point_position(const double* q, int body, int point, double* xy);\n\n"
+         << "void point_position(const double* q, int body, int point, double* xy);\n"
+         << "void dynamics(const double* q, const double* qd, double t, double* M, double* F, double* Q);\n\n"
          << "}  // namespace " << name << "\n}  // namespace mbfe_generated\n\n"
          << "extern \"C\" const mbfe_model_v1* " << entry << "(void);\n";
 
@@ -158,7 +161,7 @@ GeneratedSolver generate_solver(const model::Model& model) {
          << "    \"" << model.source_sha256 << "\",\n"
          << "    \"" << generator_version() << "\",\n"
          << "    kNumCoordinates,\n    kCoordinateNames,\n    mass_matrix,\n    inertial_forces,\n"
-         << "    generalized_forces,\n    point_position,\n    0,\n    nullptr,\n};\n\n"
+         << "    generalized_forces,\n    point_position,\n    0,\n    nullptr,\n    dynamics,\n};\n\n"
          << "}  // namespace\n}  // namespace " << name << "\n}  // namespace mbfe_generated\n\n"
          << "extern \"C\" const mbfe_model_v1* " << entry << "(void) { return &" << ns << "::kModel; }\n\n"
          << "#ifdef MBFE_SHARED_ENTRY  // defined when compiled into a run-time loaded library\n"

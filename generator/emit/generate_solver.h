@@ -17,7 +17,8 @@ struct GeneratedFile {
 
 struct GeneratedSolver {
   std::vector<GeneratedFile> files;                        // header first
-  std::vector<std::pair<std::string, long>> operations;    // per kernel, in emission order
+  std::vector<std::pair<std::string, long>> operations;    // M, F, Q kernels, in emission order
+  long fused_operations = 0;                               // the fused M+F+Q kernel
   long total_operations() const;
 };
 

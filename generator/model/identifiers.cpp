@@ -12,6 +12,7 @@ namespace {
 // C++20 keywords, the alternative tokens, and identifiers with special meaning
 // that would read confusingly as a variable (`final`, `override`), and the
 // macros a generated file may see (`NULL`, `assert`, `errno`).
+// clang-format off
 constexpr std::string_view kReserved[] = {
     "alignas",   "alignof",     "and",          "and_eq",       "asm",
     "auto",      "bitand",      "bitor",        "bool",         "break",
@@ -33,6 +34,7 @@ constexpr std::string_view kReserved[] = {
     "typename",  "union",       "unsigned",     "using",        "virtual",
     "void",      "volatile",    "wchar_t",      "while",        "xor",
     "xor_eq",    "NULL",        "assert",       "errno"};
+// clang-format on
 
 }  // namespace
 

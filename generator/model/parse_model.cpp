@@ -1,12 +1,14 @@
 // Model description file (YAML) -> validated model IR.
 //
-// Three stages: the raw bytes are checked (size, text, nesting depth) so that
+// Three stages: the raw bytes are checked (size, text, nesting depth, number
+// of values) so that
 // nothing absurd reaches yaml-cpp; yaml-cpp builds a tree, and any exception
 // it throws becomes a ModelError at its mark; the tree is walked section by
 // section against the schema of the model-file contracts (issues 2 to 5),
 // each value checked and each cross reference resolved to an index.
 #include "model/parse_model.h"
 
+#include <sys/stat.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cerrno>
@@ -16,7 +18,6 @@
 #include <new>
 #include <sstream>
 #include <unordered_map>
-#include <sys/stat.h>
 
 #include "model/sha256.h"
 #include "model/text_guard.h"
@@ -33,10 +34,6 @@ constexpr double kNodeTolerance = 1e-9;
 // The name a parent takes for the ground frame; no body may take it.
 constexpr const char* kGround = "ground";
 
-constexpr const char* kIntegrators[] = {"forward_euler", "backward_euler",
-                                        "explicit_midpoint", "trapezoid", "rk4",
-                                        "generalized_alpha", "lmm"};
-
 std::string quoted(const std::string& name) { return "'" + shown(name) + "'"; }
 
 /// Walks one parsed YAML document into a Model.
@@ -47,8 +44,8 @@ class ModelParser {
 
   void parse(const YAML::Node& root) {
     const MapView top(file_, root, "", "", SourceLoc{1, 1});
-    top.allow({"model", "description", "gravity", "bodies", "loads", "beams", "contacts",
-               "initial", "simulation"});
+    top.allow({"model", "description", "gravity", "bodies", "loads", "beams", "contacts", "initial",
+               "simulation"});
     const Field& name = top.require("model");
     model_.name = top.identifier(name, limits_.max_name_length);
     if (const Field* description = top.find("description")) top.text(*description);
@@ -74,13 +71,14 @@ class ModelParser {
   /// Bodies and beams both name coordinates, so they share one namespace.
   void claim_coordinate_name(const MapView& view, const Field& field, const std::string& name) {
     if (name == kGround) {
-      view.fail(field.value_loc, view.prefixed("the name 'ground' is reserved for the ground frame"));
+      view.fail(field.value_loc,
+                view.prefixed("the name 'ground' is reserved for the ground frame"));
     }
     const auto [it, inserted] = coordinate_names_.emplace(name, field.value_loc);
     if (!inserted) {
-      view.fail(field.value_loc, view.prefixed("duplicate name " + quoted(name) +
-                                               " (first used at line " +
-                                               std::to_string(it->second.line) + ")"));
+      view.fail(field.value_loc,
+                view.prefixed("duplicate name " + quoted(name) + " (first used at line " +
+                              std::to_string(it->second.line) + ")"));
     }
   }
 
@@ -115,9 +113,9 @@ class ModelParser {
                                        const char* limit_name) const {
     std::vector<YAML::Node> items = view.list(field);
     if (static_cast<long>(items.size()) > limit) {
-      view.fail(field.value_loc,
-                field.key + ": " + std::to_string(items.size()) + " entries, more than the limit of " +
-                    std::to_string(limit) + " (ParseLimits::" + limit_name + ")");
+      view.fail(field.value_loc, field.key + ": " + std::to_string(items.size()) +
+                                     " entries, more than the limit of " + std::to_string(limit) +
+                                     " (ParseLimits::" + limit_name + ")");
     }
     return items;
   }
@@ -127,8 +125,9 @@ class ModelParser {
   void parse_bodies(const MapView& top, const Field& field) {
     const auto items = bounded_list(top, field, limits_.max_bodies, "max_bodies");
     for (std::size_t i = 0; i < items.size(); ++i) {
-      const MapView view(file_, items[i], item_context(items[i], "body", i, limits_.max_name_length),
-                   "", field.value_loc);
+      const MapView view(file_, items[i],
+                         item_context(items[i], "body", i, limits_.max_name_length), "",
+                         field.value_loc);
       model_.bodies.push_back(parse_body(view));
       const Body& body = model_.bodies.back();
       body_by_name_.emplace(body.name, static_cast<int>(i));
@@ -166,8 +165,10 @@ class ModelParser {
     }
     const int index = body_index(name);
     if (index >= 0) return index;
-    view.fail(field.value_loc, view.prefixed("unknown parent " + quoted(name) +
-                                             " (a parent must be listed before its children; the root is 'ground')"));
+    view.fail(
+        field.value_loc,
+        view.prefixed("unknown parent " + quoted(name) +
+                      " (a parent must be listed before its children; the root is 'ground')"));
   }
 
   Joint parse_joint(const MapView& view) {
@@ -181,8 +182,10 @@ class ModelParser {
     const Field* axis = view.find("axis");
     if (joint.type == JointType::kRevolute) {
       if (axis) {
-        view.fail(axis->key_loc,
-                  view.prefixed("joint.axis applies to prismatic joints only (a revolute joint turns about z)"));
+        view.fail(
+            axis->key_loc,
+            view.prefixed(
+                "joint.axis applies to prismatic joints only (a revolute joint turns about z)"));
       }
       return joint;
     }
@@ -259,16 +262,17 @@ class ModelParser {
   void parse_beams(const MapView& top, const Field& field) {
     const auto items = top.list(field);
     for (std::size_t i = 0; i < items.size(); ++i) {
-      const MapView view(file_, items[i], item_context(items[i], "beam", i, limits_.max_name_length),
-                   "", field.value_loc);
+      const MapView view(file_, items[i],
+                         item_context(items[i], "beam", i, limits_.max_name_length), "",
+                         field.value_loc);
       model_.beams.push_back(parse_beam(view));
       beam_by_name_.emplace(model_.beams.back().name, static_cast<int>(i));
     }
   }
 
   Beam parse_beam(const MapView& view) {
-    view.allow({"name", "origin", "angle", "length", "elements", "section", "material",
-                "supports", "damping", "loads", "adjustment", "mass"});
+    view.allow({"name", "origin", "angle", "length", "elements", "section", "material", "supports",
+                "damping", "loads", "adjustment", "mass"});
     Beam beam;
     beam.loc = view.loc();
     const Field& name = view.require("name");
@@ -304,11 +308,10 @@ class ModelParser {
                 view.prefixed("elements must be > 0 (got " + shown(field.value.Scalar()) + ")"));
     }
     if (elements > limits_.max_beam_elements) {
-      view.fail(field.value_loc,
-                view.prefixed("elements = " + std::to_string(elements) +
-                              " is more than the limit of " +
-                              std::to_string(limits_.max_beam_elements) +
-                              " per beam (ParseLimits::max_beam_elements)"));
+      view.fail(field.value_loc, view.prefixed("elements = " + std::to_string(elements) +
+                                               " is more than the limit of " +
+                                               std::to_string(limits_.max_beam_elements) +
+                                               " per beam (ParseLimits::max_beam_elements)"));
     }
     // Two DOFs (w, w') per node, before supports remove some.
     total_beam_dofs_ += 2 * (elements + 1);
@@ -330,13 +333,19 @@ class ModelParser {
       beam.area = side * side;
       beam.second_moment = side * side * side * side / 12.0;
     } else {
-      view.allow({"shape", "area", "inertia"});
+      if (view.find("side")) {
+        view.fail(view.find("side")->key_loc,
+                  view.prefixed("section: 'side' needs 'shape: square' (a section is either "
+                                "{shape: square, side: a} or {area: A, inertia: I})"));
+      }
+      view.allow({"area", "inertia"});
       beam.area = view.positive(view.require("area"));
       beam.second_moment = view.positive(view.require("inertia"));
     }
     if (!std::isfinite(beam.area) || !std::isfinite(beam.second_moment) ||
         beam.second_moment <= 0.0) {
-      view.fail(view.loc(), view.prefixed("section: area and second moment must be finite and > 0"));
+      view.fail(view.loc(),
+                view.prefixed("section: area and second moment must be finite and > 0"));
     }
   }
 
@@ -350,10 +359,10 @@ class ModelParser {
   int node_at(const MapView& view, const Field& field, const Beam& beam) const {
     const double at = view.number(field);
     if (at < 0.0 || at > beam.length) {
-      view.fail(field.value_loc,
-                view.prefixed(view.what(field) + " must be within [0, " +
-                              format_number(beam.length) + "] (the beam's length; got " +
-                              shown(field.value.Scalar()) + ")"));
+      view.fail(
+          field.value_loc,
+          view.prefixed(view.what(field) + " must be within [0, " + format_number(beam.length) +
+                        "] (the beam's length; got " + shown(field.value.Scalar()) + ")"));
     }
     const double spacing = beam.length / beam.elements;
     const long node = std::lround(at / spacing);
@@ -361,8 +370,8 @@ class ModelParser {
       view.fail(field.value_loc,
                 view.prefixed(view.what(field) + " = " + shown(field.value.Scalar()) +
                               " is not at a node (nodes are " + format_number(spacing) +
-                              " m apart; the nearest is node " + std::to_string(node) +
-                              " at " + format_number(node * spacing) + ")"));
+                              " m apart; the nearest is node " + std::to_string(node) + " at " +
+                              format_number(node * spacing) + ")"));
     }
     return static_cast<int>(node);
   }
@@ -372,9 +381,9 @@ class ModelParser {
     std::vector<Support> supports;
     const auto items = beam_view.list(field);
     for (std::size_t i = 0; i < items.size(); ++i) {
-      const MapView view(file_, items[i], "beam " + quoted(beam.name) + ": support #" +
-                                              std::to_string(i + 1),
-                         "", field.value_loc);
+      const MapView view(file_, items[i],
+                         "beam " + quoted(beam.name) + ": support #" + std::to_string(i + 1), "",
+                         field.value_loc);
       view.allow({"at", "type"});
       Support support;
       support.loc = view.loc();
@@ -409,9 +418,9 @@ class ModelParser {
     std::vector<BeamPointLoad> loads;
     const auto items = beam_view.list(field);
     for (std::size_t i = 0; i < items.size(); ++i) {
-      const MapView view(file_, items[i], "beam " + quoted(beam.name) + ": load #" +
-                                              std::to_string(i + 1),
-                         "", field.value_loc);
+      const MapView view(file_, items[i],
+                         "beam " + quoted(beam.name) + ": load #" + std::to_string(i + 1), "",
+                         field.value_loc);
       view.allow({"type", "at", "value"});
       view.choice(view.require("type"), {"point"});
       BeamPointLoad load;
@@ -442,11 +451,11 @@ class ModelParser {
       }
     }
     if (const Field* policy = view.find("policy")) {
-      constexpr AdjustmentPolicy kPolicies[] = {AdjustmentPolicy::kCap,
-                                                AdjustmentPolicy::kPaperEq25,
-                                                AdjustmentPolicy::kKeepSlow,
-                                                AdjustmentPolicy::kNone};
-      adjustment.policy = kPolicies[view.choice(*policy, {"cap", "paper_eq25", "keep_slow", "none"})];
+      constexpr AdjustmentPolicy kPolicies[] = {
+          AdjustmentPolicy::kCap, AdjustmentPolicy::kPaperEq25, AdjustmentPolicy::kKeepSlow,
+          AdjustmentPolicy::kNone};
+      adjustment.policy =
+          kPolicies[view.choice(*policy, {"cap", "paper_eq25", "keep_slow", "none"})];
     }
     return adjustment;
   }
@@ -457,8 +466,9 @@ class ModelParser {
     const auto items = top.list(field);
     std::unordered_map<std::string, SourceLoc> names;
     for (std::size_t i = 0; i < items.size(); ++i) {
-      const MapView view(file_, items[i], item_context(items[i], "contact", i, limits_.max_name_length),
-                   "", field.value_loc);
+      const MapView view(file_, items[i],
+                         item_context(items[i], "contact", i, limits_.max_name_length), "",
+                         field.value_loc);
       view.allow({"name", "type", "body", "point", "beam", "at"});
       Contact contact;
       contact.loc = view.loc();
@@ -532,10 +542,9 @@ class ModelParser {
     Simulation& simulation = model_.simulation;
     simulation.loc = view.loc();
     if (const Field* integrator = view.find("integrator")) {
-      simulation.integrator =
-          kIntegrators[view.choice(*integrator, {"forward_euler", "backward_euler",
-                                                 "explicit_midpoint", "trapezoid", "rk4",
-                                                 "generalized_alpha", "lmm"})];
+      view.choice(*integrator, {"forward_euler", "backward_euler", "explicit_midpoint", "trapezoid",
+                                "rk4", "generalized_alpha", "lmm"});
+      simulation.integrator = integrator->value.Scalar();
     }
     if (const Field* step = view.find("step")) simulation.step = view.positive(*step);
     if (const Field* t_end = view.find("t_end")) simulation.t_end = view.positive(*t_end);
@@ -567,9 +576,9 @@ YAML::Node load_single_document(const std::string& text, const std::string& file
   if (documents.size() > 1) {
     SourceLoc loc = location_of(documents[1]);
     if (loc.line == 0) loc = {1, 1};
-    throw ModelError(file, loc,
-                     "the file holds " + std::to_string(documents.size()) +
-                         " YAML documents, expected one");
+    throw ModelError(
+        file, loc,
+        "the file holds " + std::to_string(documents.size()) + " YAML documents, expected one");
   }
   return documents.front();
 }
@@ -595,8 +604,8 @@ Model parse_model_text(const std::string& text, const std::string& display_path,
   if (text.size() > limits.max_file_bytes) {
     throw ModelError(display_path, {1, 1},
                      "the file is " + std::to_string(text.size()) +
-                         " bytes, more than the limit of " +
-                         std::to_string(limits.max_file_bytes) + " (ParseLimits::max_file_bytes)");
+                         " bytes, more than the limit of " + std::to_string(limits.max_file_bytes) +
+                         " (ParseLimits::max_file_bytes)");
   }
   if (auto problem = find_non_text(text)) {
     throw ModelError(display_path, problem->loc, problem->message);
@@ -633,8 +642,8 @@ Model load_model_file(const std::string& path, const ParseLimits& limits) {
   if (S_ISREG(info.st_mode) && static_cast<std::size_t>(info.st_size) > limits.max_file_bytes) {
     throw ModelError(path, {1, 1},
                      "the file is " + std::to_string(info.st_size) +
-                         " bytes, more than the limit of " +
-                         std::to_string(limits.max_file_bytes) + " (ParseLimits::max_file_bytes)");
+                         " bytes, more than the limit of " + std::to_string(limits.max_file_bytes) +
+                         " (ParseLimits::max_file_bytes)");
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ModelError(path, {}, std::string("cannot read: ") + std::strerror(errno));

@@ -33,8 +33,7 @@ std::size_t utf8_sequence_length(const std::string& text, std::size_t i) {
     return continuation(i + 1) && continuation(i + 2) && continuation(i + 3) ? 4 : 0;
   }
   if (b0 == 0xF4) {
-    return continuation(i + 1, 0x80, 0x8F) && continuation(i + 2) && continuation(i + 3) ? 4
-                                                                                          : 0;
+    return continuation(i + 1, 0x80, 0x8F) && continuation(i + 2) && continuation(i + 3) ? 4 : 0;
   }
   return 0;
 }
@@ -44,8 +43,8 @@ bool is_allowed_control(unsigned char c) { return c == '\t' || c == '\n' || c ==
 /// Characters after which `[`, `{` or a quote opens a new node in block
 /// context (start of line is '\n').
 bool opens_node_after(char last) {
-  return last == '\n' || last == ':' || last == '-' || last == '?' || last == ',' ||
-         last == '[' || last == '{';
+  return last == '\n' || last == ':' || last == '-' || last == '?' || last == ',' || last == '[' ||
+         last == '{';
 }
 
 }  // namespace
@@ -93,8 +92,8 @@ std::optional<TextProblem> find_excess_structure(const std::string& text, int ma
   };
   std::vector<int> block_indents;  // strictly increasing indentation levels
   int flow_depth = 0;
-  char quote = 0;                  // the open quote character, 0 when none
-  int block_scalar_indent = -1;    // >= 0 while inside a `|` or `>` block scalar
+  char quote = 0;                // the open quote character, 0 when none
+  int block_scalar_indent = -1;  // >= 0 while inside a `|` or `>` block scalar
   int line = 0;
   std::size_t pos = 0;
   while (pos <= text.size() && (pos < text.size() || line == 0)) {

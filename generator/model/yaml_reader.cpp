@@ -32,8 +32,7 @@ std::string join(std::initializer_list<const char*> words) {
 bool parse_double(const std::string& text, double& value, std::string& why) {
   std::string_view digits(text);
   if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-  const auto [end, error] =
-      std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   if (digits.empty() || end != digits.data() + digits.size() ||
       error == std::errc::invalid_argument) {
     const bool yaml_special = text == ".nan" || text == ".NaN" || text == ".NAN" ||
@@ -86,8 +85,7 @@ std::string describe(const YAML::Node& node) {
     case YAML::NodeType::Map:
       return "a map";
     case YAML::NodeType::Sequence:
-      return "a list of " + std::to_string(node.size()) + " item" +
-             (node.size() == 1 ? "" : "s");
+      return "a list of " + std::to_string(node.size()) + " item" + (node.size() == 1 ? "" : "s");
     case YAML::NodeType::Scalar:
       return is_quoted(node) ? "the string \"" + shown(node.Scalar()) + "\""
                              : "'" + shown(node.Scalar()) + "'";
@@ -137,8 +135,8 @@ MapView::MapView(const std::string& file, const YAML::Node& node, std::string co
   loc_ = location_of(node);
   if (loc_.line == 0) loc_ = fallback_loc;
   if (!node.IsMap()) {
-    const std::string what = path_.empty() ? std::string("the model file")
-                                           : path_.substr(0, path_.size() - 1);
+    const std::string what =
+        path_.empty() ? std::string("the model file") : path_.substr(0, path_.size() - 1);
     fail(loc_, prefixed(what + ": expected a map of keys, got " + describe(node)));
   }
   for (auto it = node.begin(); it != node.end(); ++it) {
@@ -152,8 +150,7 @@ MapView::MapView(const std::string& file, const YAML::Node& node, std::string co
     field.value_loc = field.value.IsNull() ? SourceLoc{} : location_of(field.value);
     if (field.value_loc.line == 0) field.value_loc = field.key_loc;
     if (!field.key_node.IsScalar()) {
-      fail(field.key_loc, "expected a plain key " + where() + ", got " +
-                              describe(field.key_node));
+      fail(field.key_loc, "expected a plain key " + where() + ", got " + describe(field.key_node));
     }
     field.key = field.key_node.Scalar();
     // A hash, not a scan: `points:` or `initial.q:` may hold many keys.
@@ -226,8 +223,8 @@ long long MapView::whole_number(const Field& field) const {
   // 2^53: beyond it doubles skip integers; far beyond every limit anyway.
   constexpr double kLargestExact = 9007199254740992.0;
   if (value != std::floor(value) || std::fabs(value) > kLargestExact) {
-    fail(field.value_loc, prefixed(what(field) + ": expected a whole number, got " +
-                                   shown(field.value.Scalar())));
+    fail(field.value_loc,
+         prefixed(what(field) + ": expected a whole number, got " + shown(field.value.Scalar())));
   }
   return static_cast<long long>(value);
 }
@@ -235,8 +232,8 @@ long long MapView::whole_number(const Field& field) const {
 Vec2 MapView::vec2(const Field& field) const {
   const YAML::Node& value = field.value;
   if (!value.IsSequence() || value.size() != 2) {
-    fail(field.value_loc, prefixed(what(field) + ": expected a list of 2 numbers [x, y], got " +
-                                   describe(value)));
+    fail(field.value_loc,
+         prefixed(what(field) + ": expected a list of 2 numbers [x, y], got " + describe(value)));
   }
   Vec2 result{};
   for (std::size_t i = 0; i < 2; ++i) {
@@ -277,8 +274,8 @@ int MapView::choice(const Field& field, std::initializer_list<const char*> choic
       ++index;
     }
   }
-  fail(field.value_loc, prefixed(what(field) + ": expected one of " + join(choices) +
-                                 ", got " + describe(field.value)));
+  fail(field.value_loc, prefixed(what(field) + ": expected one of " + join(choices) + ", got " +
+                                 describe(field.value)));
 }
 
 std::vector<YAML::Node> MapView::list(const Field& field) const {

@@ -47,8 +47,8 @@ class MapView {
  public:
   /// @throws ModelError if `node` is not a map, a key is not a plain string,
   /// or a key appears twice.
-  MapView(const std::string& file, const YAML::Node& node, std::string context,
-          std::string path, SourceLoc fallback_loc);
+  MapView(const std::string& file, const YAML::Node& node, std::string context, std::string path,
+          SourceLoc fallback_loc);
 
   /// @throws ModelError at the first key not in `allowed`.
   void allow(std::initializer_list<const char*> allowed) const;

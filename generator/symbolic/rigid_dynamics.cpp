@@ -237,7 +237,12 @@ void derive_rigid_dynamics(const model::Model& model, RigidDerivation& d) {
       d.points.push_back({b, p, std::move(k)});
     }
   }
-  for (Kernel* k : {&d.mass_matrix, &d.inertial_forces, &d.generalized_forces})
+  d.dynamics = {"dynamics",
+                "const double* q, const double* qd, double t, double* M, double* F, double* Q",
+                "M, F and Q at once, sharing the kinematics.", {}, {}};
+  for (const Kernel* k : {&d.mass_matrix, &d.inertial_forces, &d.generalized_forces})
+    d.dynamics.outputs.insert(d.dynamics.outputs.end(), k->outputs.begin(), k->outputs.end());
+  for (Kernel* k : {&d.mass_matrix, &d.inertial_forces, &d.generalized_forces, &d.dynamics})
     k->statements = code.closure(k->outputs);
   for (auto& pk : d.points) pk.kernel.statements = code.closure(pk.kernel.outputs);
 }

@@ -36,6 +36,7 @@ struct RigidDerivation {
   std::vector<Vec2x> origin;
   std::vector<GiNaC::ex> cos_angle, sin_angle;
   Kernel mass_matrix, inertial_forces, generalized_forces;
+  Kernel dynamics;  // all three at once, kinematics shared
   /// One kernel per named point: body b, point p -> ground-frame position.
   struct PointKernel {
     int body, point;

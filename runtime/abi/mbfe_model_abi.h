@@ -57,6 +57,10 @@ typedef struct mbfe_model_v1 {
   void (*point_position)(const double* q, int body, int point, double* xy);
   int num_contacts;
   const mbfe_contact_kernels_v1* contacts;
+  /* M, F and Q in one call, sharing the kinematics (what an integrator wants
+   * at every step); may be NULL in hand-written models, then call the three
+   * kernels above. */
+  void (*dynamics)(const double* q, const double* qd, double t, double* M, double* F, double* Q);
 } mbfe_model_v1;
 
 typedef const mbfe_model_v1* (*mbfe_model_entry_fn)(void);
