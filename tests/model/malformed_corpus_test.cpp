@@ -11,14 +11,14 @@
 // - wrong types: mass_is_map, mass_is_quoted_string, mass_is_word, mass_is_list, mass_empty,
 //   bodies_not_list, gravity_three_components, gravity_scalar, com_scalar, joint_not_map,
 //   elements_fraction, name_is_list, points_as_list, torque_value_vector,
-//   force_value_scalar, step_quoted, hex_number
+//   force_value_scalar, step_quoted, hex_number, alias_bomb (9^9 aliases, never expanded)
 // - NaN and infinities: mass_nan, inertia_inf, gravity_minus_inf, length_overflow (1e999),
 //   joint_at_nan_word, huge_digit_string
 // - negative or zero sizes: mass_negative, inertia_negative, beam_length_zero,
 //   beam_length_negative, elements_zero, elements_negative, youngs_modulus_zero,
 //   density_negative, section_side_zero, section_area_negative, section_inertia_missing,
-//   section_shape_and_area, rayleigh_alpha_negative, step_zero, t_end_negative,
-//   omega_limit_zero, margin_negative, zeta_min_one, adjustment_unknown_policy,
+//   section_shape_and_area, section_side_without_shape, rayleigh_alpha_negative,
+//   step_zero, t_end_negative, omega_limit_zero, margin_negative, zeta_min_one, adjustment_unknown_policy,
 //   prismatic_zero_axis, prismatic_without_axis, revolute_with_axis,
 //   spring_negative_stiffness
 // - unknown or duplicate names and keys: unknown_body_key, unknown_top_key,
@@ -32,8 +32,9 @@
 //   support_twice_on_node, beam_load_off_node, beam_load_negative_position
 // - contacts: contact_missing_beam, contact_at_outside_beam, slider_pin_with_at,
 //   contact_unknown_point, pin_without_at
-// - resource limits: elements_hundred_million, total_dofs_over_limit, and the
-//   10,000-body chain generated below (TenThousandBodyChain)
+// - resource limits: elements_hundred_million, total_dofs_over_limit, and, generated
+//   below, the 10,000-body chain (TenThousandBodyChain) and a 2001-body one
+//   (ChainOverBodyLimit)
 // - names that are not identifiers, C++ keywords: name_with_dash, name_starts_with_digit,
 //   name_keyword_int, model_name_class, model_name_code_injection, name_unicode,
 //   name_double_underscore, name_too_long, point_name_with_space, name_true
@@ -47,9 +48,9 @@
 #include <algorithm>
 #include <cctype>
 #include <ctime>
-#include <regex>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -98,7 +99,8 @@ Expectation read_header(const std::string& path) {
   std::getline(in, at_line);
   const std::string expect_tag = "# expect: ", at_tag = "# at: ";
   Expectation expectation;
-  if (expect_line.rfind(expect_tag, 0) == 0) expectation.substring = expect_line.substr(expect_tag.size());
+  if (expect_line.rfind(expect_tag, 0) == 0)
+    expectation.substring = expect_line.substr(expect_tag.size());
   if (at_line.rfind(at_tag, 0) == 0) expectation.location = at_line.substr(at_tag.size());
   return expectation;
 }
@@ -191,8 +193,9 @@ TEST(MalformedCorpusGenerated, ChainOverBodyLimit) {
   std::ofstream(path, std::ios::binary) << chain_text(2001);
   double seconds = 0.0;
   EXPECT_EQ(refusal_of(path, seconds),
-            path + ":3:3: bodies: 2001 entries, more than the limit of 2000 "
-                   "(ParseLimits::max_bodies)");
+            path +
+                ":3:3: bodies: 2001 entries, more than the limit of 2000 "
+                "(ParseLimits::max_bodies)");
   EXPECT_LT(seconds, kMaxParseSeconds);
 }
 

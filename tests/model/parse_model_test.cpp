@@ -79,8 +79,7 @@ TEST(ParseModel, ShippedRigidModelsParse) {
 
 TEST(ParseModel, Sha256OfKnownVector) {
   // FIPS 180-2, appendix B.1.
-  EXPECT_EQ(sha256_hex("abc"),
-            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
   EXPECT_EQ(parse_model_text("model: m\nbodies: [{name: a, parent: ground, joint: {type: "
                              "revolute}, mass: 1, inertia: 1}]\n",
                              "m.yaml")
@@ -259,8 +258,7 @@ TEST(ParseModelErrors, UnknownKeyPointsAtTheKey) {
 }
 
 TEST(ParseModelErrors, MissingKeyPointsAtTheMap) {
-  EXPECT_EQ(error_of(replaced(kTwoLinks, "    inertia: 0.1\n  - name: link2",
-                              "  - name: link2")),
+  EXPECT_EQ(error_of(replaced(kTwoLinks, "    inertia: 0.1\n  - name: link2", "  - name: link2")),
             "models/x.yaml:3:5: body 'link1': missing required key 'inertia'");
 }
 
@@ -305,8 +303,7 @@ TEST(ParseModelErrors, ResourceLimitsSayValueAndLimit) {
   ParseLimits small;
   small.max_file_bytes = 100;
   const std::string text = kTwoLinks;
-  EXPECT_EQ(error_of(text, small), "models/x.yaml:1:1: the file is " +
-                                       std::to_string(text.size()) +
+  EXPECT_EQ(error_of(text, small), "models/x.yaml:1:1: the file is " + std::to_string(text.size()) +
                                        " bytes, more than the limit of 100 "
                                        "(ParseLimits::max_file_bytes)");
   ParseLimits one_body;
