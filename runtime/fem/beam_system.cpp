@@ -126,6 +126,24 @@ BeamSystem assemble_beam(const model::Beam& beam, const model::Vec2& gravity) {
   sys.M.makeCompressed();
   sys.C = beam.rayleigh_alpha * sys.M + beam.rayleigh_beta * sys.K;
   sys.C.makeCompressed();
+  // The stiffness factor, element rows stacked (free columns only).
+  const Eigen::MatrixXd fe = element->stiffness_factor();
+  if (fe.size() > 0) {
+    const int fr = static_cast<int>(fe.rows());
+    std::vector<Eigen::Triplet<double>> tf;
+    tf.reserve(static_cast<size_t>(ne) * fr * ed);
+    for (int e = 0; e < ne; ++e) {
+      for (int r = 0; r < fr; ++r) {
+        for (int b = 0; b < ed; ++b) {
+          const int cb = sys.full_to_free[nd * e + b];
+          if (cb >= 0 && fe(r, b) != 0.0) tf.emplace_back(fr * e + r, cb, fe(r, b));
+        }
+      }
+    }
+    sys.stiffness_factor.resize(static_cast<Eigen::Index>(fr) * ne, n);
+    sys.stiffness_factor.setFromTriplets(tf.begin(), tf.end());
+    sys.stiffness_factor.makeCompressed();
+  }
   sys.P.resize(n);
   for (int k = 0; k < n; ++k) sys.P[k] = p_full[sys.free_dof[k]];
   return sys;

@@ -29,6 +29,9 @@ struct BeamSystem {
   double length = 0.0;               // m
   double rayleigh_alpha = 0.0;       // 1/s (C = alpha M + beta K)
   double rayleigh_beta = 0.0;        // s
+  /// S with S^T S = K (r x n, r = 2 per element for the Hermite element), or
+  /// empty when the element offers no factor. Used by the sparse modal path.
+  Eigen::SparseMatrix<double> stiffness_factor;
 };
 
 /// Assembles one beam. @param gravity ground-frame gravity (m/s^2); its

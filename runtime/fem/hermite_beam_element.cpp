@@ -47,6 +47,17 @@ Eigen::VectorXd HermiteBeamElement::uniform_load(double q) const {
   return p;
 }
 
+Eigen::MatrixXd HermiteBeamElement::stiffness_factor() const {
+  const double l = le_;
+  const double root = std::sqrt(EI_ * l);
+  const double r12 = std::sqrt(12.0);
+  Eigen::MatrixXd f(2, 4);
+  f << 0.0, -root / l, 0.0, root / l,  // mean curvature (theta2 - theta1) / le
+      root * 12.0 / (r12 * l * l), root * 6.0 / (r12 * l), -root * 12.0 / (r12 * l * l),
+      root * 6.0 / (r12 * l);  // curvature change k1 - k0, over sqrt(12)
+  return f;
+}
+
 std::unique_ptr<BeamElement> make_beam_element(const model::Beam& beam) {
   const auto require_positive = [&](double v, const char* what) {
     if (!(v > 0.0) || !std::isfinite(v)) {

@@ -18,6 +18,10 @@ class HermiteBeamElement final : public BeamElement {
   Eigen::MatrixXd stiffness() const override;
   Eigen::MatrixXd mass() const override;
   Eigen::VectorXd uniform_load(double q) const override;
+  /// sqrt(EI le) [mean curvature; (curvature change) / sqrt(12)] (2 x 4):
+  /// the bending energy EI le (k0^2 + k0 k1 + k1^2) / 3 of the linear
+  /// curvature k(xi) = k0 (1 - xi) + k1 xi as a sum of two squares.
+  Eigen::MatrixXd stiffness_factor() const override;
 
  private:
   double le_;
