@@ -1,5 +1,6 @@
 #include "cli_args.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -10,11 +11,14 @@ ParsedArgs::ParsedArgs(const std::vector<std::string>& args, const std::set<std:
                        const std::set<std::string>& bool_flags) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
-    if (arg.rfind("--", 0) != 0 || arg == "--") {
+    // "--name" or a one-letter "-o"; anything else (including "-0.5") is positional.
+    const bool long_flag = arg.rfind("--", 0) == 0 && arg.size() > 2;
+    const bool short_flag = arg.size() == 2 && arg[0] == '-' && std::isalpha(static_cast<unsigned char>(arg[1]));
+    if (!long_flag && !short_flag) {
       positional_.push_back(arg);
       continue;
     }
-    std::string name = arg.substr(2);
+    std::string name = arg.substr(long_flag ? 2 : 1);
     std::optional<std::string> inline_value;
     if (const auto eq = name.find('='); eq != std::string::npos) {
       inline_value = name.substr(eq + 1);
@@ -31,7 +35,7 @@ ParsedArgs::ParsedArgs(const std::vector<std::string>& args, const std::set<std:
         values_[name] = args[++i];
       }
     } else {
-      throw UsageError("unknown flag --" + name + " (see --help)");
+      throw UsageError("unknown flag " + arg + " (see --help)");
     }
   }
 }
