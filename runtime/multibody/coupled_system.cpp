@@ -1,0 +1,395 @@
+#include "multibody/coupled_system.h"
+
+#include <Eigen/QR>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "multibody/multibody_errors.h"
+
+namespace mbfe::runtime {
+
+namespace {
+
+// A matrix is declared singular below this reciprocal condition estimate
+// (double precision with a margin of ~1e3 ulps for the small dense solves).
+constexpr double kSingularRcond = 1e-13;
+
+[[noreturn]] void throw_singular_constraints(const ContactConstraints& cc,
+                                             const Eigen::MatrixXd& jb, double t, double rcond,
+                                             const std::string& what) {
+  // The constraint row that carries most of the lost rank.
+  int row = 0;
+  if (jb.rows() > 0) {
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(jb, Eigen::ComputeFullU);
+    svd.matrixU().col(jb.rows() - 1).cwiseAbs().maxCoeff(&row);
+  }
+  const int c = cc.num_rows() > 0 ? cc.contact_of_row(row) : 0;
+  const std::string name = cc.num_contacts() > 0 ? cc.contact_name(c) : "?";
+  std::ostringstream os;
+  os << "contact '" << name << "': singular constraint Jacobian at t = " << t << " s ("
+     << what << ", reciprocal condition " << rcond
+     << "): the rigid coordinates cannot move the contact point in the direction of row "
+     << row - (cc.num_rows() > 0 ? cc.first_row(c) : 0)
+     << " of this contact (a linkage at a dead point, or redundant contacts)";
+  throw SingularConstraintError(os.str(), name, t, rcond);
+}
+
+}  // namespace
+
+BeamForceFn sparse_beam_force(Eigen::SparseMatrix<double> C, Eigen::SparseMatrix<double> K) {
+  return [C = std::move(C), K = std::move(K)](const Eigen::Ref<const Eigen::VectorXd>& q,
+                                              const Eigen::Ref<const Eigen::VectorXd>& qd,
+                                              Eigen::Ref<Eigen::VectorXd> f) {
+    f.noalias() = C * qd;
+    f.noalias() += K * q;
+  };
+}
+
+BeamForceFn dense_beam_force(Eigen::MatrixXd C, Eigen::MatrixXd K) {
+  return [C = std::move(C), K = std::move(K)](const Eigen::Ref<const Eigen::VectorXd>& q,
+                                              const Eigen::Ref<const Eigen::VectorXd>& qd,
+                                              Eigen::Ref<Eigen::VectorXd> f) {
+    f.noalias() = C * qd;
+    f.noalias() += K * q;
+  };
+}
+
+BeamMesh beam_mesh(const BeamSystem& beam) {
+  BeamMesh mesh;
+  mesh.name = beam.name;
+  mesh.num_elements = beam.num_nodes - 1;
+  mesh.element_length = beam.element_length;
+  mesh.full_to_free = beam.full_to_free;
+  mesh.num_free = static_cast<int>(beam.M.rows());
+  return mesh;
+}
+
+CoupledBeam coupled_beam(const BeamSystem& beam) {
+  return coupled_beam(beam, sparse_beam_force(beam.C, beam.K));
+}
+
+CoupledBeam coupled_beam(const BeamSystem& beam, BeamForceFn force) {
+  CoupledBeam out;
+  out.mesh = beam_mesh(beam);
+  out.M = beam.M;
+  out.P = beam.P;
+  out.force = std::move(force);
+  return out;
+}
+
+std::vector<BeamMesh> meshes_of(const std::vector<CoupledBeam>& beams) {
+  std::vector<BeamMesh> out;
+  for (const CoupledBeam& b : beams) out.push_back(b.mesh);
+  return out;
+}
+
+double constraint_scale(const ConstraintValues& cv) {
+  double scale = 0.0;
+  if (cv.jb.size() > 0) {
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(cv.jb);
+    scale = svd.singularValues()(0);
+  }
+  if (cv.je.size() > 0) scale = std::max(scale, cv.je.cwiseAbs().maxCoeff());
+  return std::max(scale, 1e-300);
+}
+
+double sigma_min(const Eigen::MatrixXd& a) {
+  if (a.size() == 0) return 1.0;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(a);
+  return svd.singularValues()(svd.singularValues().size() - 1);
+}
+
+Partition choose_partition(const ContactConstraints& cc, const ConstraintValues& cv, double t,
+                           double* sigma_min_out) {
+  const Eigen::MatrixXd& jb = cv.jb;
+  const int m = static_cast<int>(jb.rows());
+  const int nb = static_cast<int>(jb.cols());
+  if (m > nb) {
+    std::ostringstream os;
+    os << "the contacts impose " << m << " constraint rows on " << nb
+       << " rigid coordinates; the dependent coordinates are taken among the rigid ones, "
+          "so at most "
+       << nb << " rows are possible";
+    throw SingularConstraintError(os.str(), cc.num_contacts() ? cc.contact_name(0) : "?", t,
+                                  0.0);
+  }
+  Partition p;
+  if (m == 0) {
+    for (int j = 0; j < nb; ++j) p.independent.push_back(j);
+    if (sigma_min_out) *sigma_min_out = 1.0;
+    return p;
+  }
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(jb);
+  std::vector<bool> dep(nb, false);
+  for (int i = 0; i < m; ++i) dep[qr.colsPermutation().indices()(i)] = true;
+  for (int j = 0; j < nb; ++j) (dep[j] ? p.dependent : p.independent).push_back(j);
+  Eigen::MatrixXd jv(m, m);
+  for (int i = 0; i < m; ++i) jv.col(i) = jb.col(p.dependent[i]);
+  const double smin = sigma_min(jv);
+  const double rel = smin / constraint_scale(cv);
+  if (!(rel >= kSingularRcond)) throw_singular_constraints(cc, jb, t, rel, "J_b has rank < rows");
+  if (sigma_min_out) *sigma_min_out = smin;
+  return p;
+}
+
+CoupledDynamics::CoupledDynamics(const mbfe_model_v1& model, std::vector<CoupledBeam> beams,
+                                 std::vector<BodyInertia> bodies)
+    : model_(model),
+      beams_(std::move(beams)),
+      bodies_(std::move(bodies)),
+      cc_(model, meshes_of(beams_)),
+      nb_(model.num_coordinates),
+      nc_(cc_.num_beam_dofs()) {
+  if (model.abi_version != MBFE_MODEL_ABI_VERSION) {
+    throw std::invalid_argument("model '" + std::string(model.model_name) +
+                                "' has another ABI version; regenerate it");
+  }
+  for (const CoupledBeam& b : beams_) {
+    const int n = b.mesh.num_free;
+    if (b.M.rows() != n || b.M.cols() != n || b.P.size() != n || !b.force) {
+      std::ostringstream os;
+      os << "beam '" << b.mesh.name << "': M is " << b.M.rows() << " x " << b.M.cols()
+         << " and P has " << b.P.size() << " entries, expected " << n
+         << " (its free DOFs), and a force callback";
+      throw std::invalid_argument(os.str());
+    }
+    auto f = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(b.M);
+    if (f->info() != Eigen::Success || (n > 0 && !(f->vectorD().minCoeff() > 0.0))) {
+      throw std::runtime_error("beam '" + b.mesh.name +
+                               "': mass matrix is not positive definite (a lumped mass "
+                               "matrix without rotary inertia cannot carry a contact)");
+    }
+    mc_factor_.push_back(std::move(f));
+  }
+  const int m = cc_.num_rows();
+  mb_row_.resize(nb_, nb_);
+  mb_.resize(nb_, nb_);
+  fb_.resize(nb_);
+  qb_force_.resize(nb_);
+  rb_.resize(nb_);
+  rc_.resize(nc_);
+  ac0_.resize(nc_);
+  gc_.resize(m);
+  w_.resize(nc_, m);
+  h_.resize(m, m);
+}
+
+void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  const int n = nb_ + nc_;
+  if (q.size() != n || qd.size() != n) {
+    std::ostringstream os;
+    os << "coupled state has " << q.size() << " / " << qd.size() << " entries, expected " << n
+       << " ([q_b; q_c])";
+    throw std::invalid_argument(os.str());
+  }
+  const double* qb = q.data();
+  const double* qbd = qd.data();
+  if (model_.dynamics != nullptr) {
+    model_.dynamics(qb, qbd, t, mb_row_.data(), fb_.data(), qb_force_.data());
+  } else {
+    model_.mass_matrix(qb, mb_row_.data());
+    model_.inertial_forces(qb, qbd, fb_.data());
+    model_.generalized_forces(qb, qbd, t, qb_force_.data());
+  }
+  mb_ = mb_row_;
+  rb_ = qb_force_ - fb_;
+  cc_.evaluate(t, qb, q.data() + nb_, qbd, qd.data() + nb_, cv_);
+  // Beam side: r_c = P - (C qd + K q), a_c0 = M_c^-1 r_c.
+  for (std::size_t k = 0; k < beams_.size(); ++k) {
+    const int off = nb_ + cc_.beam_offset(static_cast<int>(k));
+    const int nk = beams_[k].mesh.num_free;
+    Eigen::Ref<Eigen::VectorXd> rck = rc_.segment(off - nb_, nk);
+    beams_[k].force(q.segment(off, nk), qd.segment(off, nk), rck);
+    rck = beams_[k].P - rck;
+    ac0_.segment(off - nb_, nk) = mc_factor_[k]->solve(rck);
+  }
+  // W = M_c^-1 J_c^T column by column (each row of J_c lives on one beam).
+  const int m = cc_.num_rows();
+  w_.setZero();
+  for (int r = 0; r < m; ++r) {
+    const int beam = model_.contacts[cc_.contact_of_row(r)].beam;
+    const int off = cc_.beam_offset(beam);
+    const int nk = beams_[beam].mesh.num_free;
+    tmp_.setZero(nk);
+    for (int j = 0; j < 4; ++j) {
+      if (cv_.jcol(r, j) >= 0) tmp_(cv_.jcol(r, j) - off) += cv_.je(r, j);
+    }
+    w_.col(r).segment(off, nk) = mc_factor_[beam]->solve(tmp_);
+  }
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < m; ++j) {
+      double v = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        if (cv_.jcol(i, k) >= 0) v += cv_.je(i, k) * w_(cv_.jcol(i, k), j);
+      }
+      h_(i, j) = v;
+    }
+  }
+  cv_.jc_times(ac0_, gc_);
+}
+
+void CoupledDynamics::solve_augmented(double t, Eigen::VectorXd& qdd, Eigen::VectorXd& lambda) {
+  // Beam accelerations eliminated with the constant, factored M_c:
+  //   q_c'' = a_c0 - W lambda, so the saddle-point system shrinks to
+  //   [[M_b, J_b^T], [J_b, -H]] [q_b''; lambda] = [r_b; gamma - J_c a_c0].
+  const int m = cc_.num_rows();
+  Eigen::MatrixXd a(nb_ + m, nb_ + m);
+  a.topLeftCorner(nb_, nb_) = mb_;
+  a.topRightCorner(nb_, m) = cv_.jb.transpose();
+  a.bottomLeftCorner(m, nb_) = cv_.jb;
+  a.bottomRightCorner(m, m) = -h_;
+  Eigen::VectorXd b(nb_ + m);
+  b.head(nb_) = rb_;
+  b.tail(m) = cv_.gamma - gc_;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
+  const double rc = lu.rcond();
+  if (!(rc >= kSingularRcond)) {
+    if (m > 0 && sigma_min(cv_.jb * cv_.jb.transpose()) <
+                     kSingularRcond * std::pow(constraint_scale(cv_), 2)) {
+      throw_singular_constraints(cc_, cv_.jb, t, rc, "saddle-point matrix");
+    }
+    throw_singular_mass_matrix(model_, bodies_, mb_, t);
+  }
+  const Eigen::VectorXd x = lu.solve(b);
+  qdd.resize(nb_ + nc_);
+  qdd.head(nb_) = x.head(nb_);
+  lambda = x.tail(m);
+  qdd.tail(nc_) = ac0_ - w_ * lambda;
+}
+
+void CoupledDynamics::solve_partitioned(double t, const Partition& p, Eigen::VectorXd& qdd,
+                                        Eigen::VectorXd& lambda) {
+  // Unknowns x = [u''; mu] with mu = -lambda (docs/partitioning.md):
+  //   v''    = X (gamma - g_c - J_u u'' - H mu),       X = J_v^-1
+  //   q_c''  = a_c0 + W mu
+  //   M_b q_b'' - J_b^T mu = r_b                       (16a) and (16b)
+  const int m = cc_.num_rows();
+  const int nu = static_cast<int>(p.independent.size());
+  Eigen::MatrixXd jv(m, m), ju(m, nu);
+  for (int i = 0; i < m; ++i) jv.col(i) = cv_.jb.col(p.dependent[i]);
+  for (int i = 0; i < nu; ++i) ju.col(i) = cv_.jb.col(p.independent[i]);
+  Eigen::FullPivLU<Eigen::MatrixXd> jv_lu(jv);
+  if (m > 0) {
+    const double rel = sigma_min(jv) / constraint_scale(cv_);
+    if (!(rel >= kSingularRcond)) {
+      throw_singular_constraints(cc_, cv_.jb, t, rel, "J_v of the partition");
+    }
+  }
+  const Eigen::VectorXd d = m > 0 ? Eigen::VectorXd(jv_lu.solve(cv_.gamma - gc_))
+                                  : Eigen::VectorXd::Zero(0);
+  const Eigen::MatrixXd xju = m > 0 ? Eigen::MatrixXd(jv_lu.solve(ju)) : Eigen::MatrixXd(0, nu);
+  const Eigen::MatrixXd xh = m > 0 ? Eigen::MatrixXd(jv_lu.solve(h_)) : Eigen::MatrixXd(0, 0);
+  // Directions of q_b'' per unknown, then A = M_b * dir (- J_b^T for mu).
+  Eigen::MatrixXd dir = Eigen::MatrixXd::Zero(nb_, nb_);
+  for (int j = 0; j < nu; ++j) {
+    dir(p.independent[j], j) = 1.0;
+    for (int i = 0; i < m; ++i) dir(p.dependent[i], j) = -xju(i, j);
+  }
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < m; ++i) dir(p.dependent[i], nu + j) = -xh(i, j);
+  }
+  Eigen::VectorXd base = Eigen::VectorXd::Zero(nb_);
+  for (int i = 0; i < m; ++i) base(p.dependent[i]) = d(i);
+  Eigen::MatrixXd a = mb_ * dir;
+  a.rightCols(m) -= cv_.jb.transpose();
+  const Eigen::VectorXd b = rb_ - mb_ * base;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
+  if (!(lu.rcond() >= kSingularRcond)) {
+    throw_singular_mass_matrix(model_, bodies_, mb_, t);
+  }
+  const Eigen::VectorXd x = lu.solve(b);
+  qdd.resize(nb_ + nc_);
+  qdd.head(nb_) = base + dir * x;
+  const Eigen::VectorXd mu = x.tail(m);
+  qdd.tail(nc_) = ac0_ + w_ * mu;
+  lambda = -mu;
+}
+
+double CoupledDynamics::phi_max(const ConstraintValues& cv, int* row) const {
+  if (cv.phi.size() == 0) {
+    if (row) *row = 0;
+    return 0.0;
+  }
+  int r = 0;
+  const double v = cv.phi.cwiseAbs().maxCoeff(&r);
+  if (row) *row = r;
+  return v;
+}
+
+std::vector<std::string> coupled_coordinate_names(const CoupledDynamics& dyn) {
+  std::vector<std::string> out;
+  const mbfe_model_v1& model = dyn.model();
+  for (int i = 0; i < model.num_coordinates; ++i) {
+    out.push_back(model.coordinate_names && model.coordinate_names[i]
+                      ? model.coordinate_names[i]
+                      : "q" + std::to_string(i));
+  }
+  for (const CoupledBeam& b : dyn.beams()) {
+    std::vector<std::string> names(b.mesh.num_free);
+    for (std::size_t full = 0; full < b.mesh.full_to_free.size(); ++full) {
+      const int f = b.mesh.full_to_free[full];
+      if (f < 0) continue;
+      names[f] = b.mesh.name + (full % 2 == 0 ? "_w" : "_dw") + std::to_string(full / 2);
+    }
+    out.insert(out.end(), names.begin(), names.end());
+  }
+  return out;
+}
+
+// --- AugmentedSystem ----------------------------------------------------------
+
+AugmentedSystem::AugmentedSystem(std::shared_ptr<CoupledDynamics> dyn)
+    : CoupledSystem(std::move(dyn)) {
+  q_.resize(dyn_->n());
+  qd_.resize(dyn_->n());
+}
+
+void AugmentedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
+  const int n = dyn_->n();
+  if (y.size() != 2 * n) {
+    throw std::invalid_argument("AugmentedSystem: y has " + std::to_string(y.size()) +
+                                " entries, expected " + std::to_string(2 * n));
+  }
+  q_ = y.head(n);
+  qd_ = y.tail(n);
+  dyn_->evaluate(t, q_, qd_);
+  dyn_->solve_augmented(t, qdd_, lambda_);
+  ydot.resize(2 * n);
+  ydot.head(n) = qd_;
+  ydot.tail(n) = qdd_;
+}
+
+std::string AugmentedSystem::name(int i) const {
+  const std::vector<std::string> names = coupled_coordinate_names(*dyn_);
+  const int n = dyn_->n();
+  return i < n ? names[i] : names[i - n] + "_dot";
+}
+
+Eigen::VectorXd AugmentedSystem::initial_state(double, const Eigen::VectorXd& q,
+                                               const Eigen::VectorXd& qd) {
+  Eigen::VectorXd y(2 * dyn_->n());
+  y << q, qd;
+  return y;
+}
+
+void AugmentedSystem::full_state(double, const Eigen::VectorXd& y, Eigen::VectorXd& q,
+                                 Eigen::VectorXd& qd) {
+  q = y.head(dyn_->n());
+  qd = y.tail(dyn_->n());
+}
+
+ContactReport AugmentedSystem::report(double t, const Eigen::VectorXd& y) {
+  Eigen::VectorXd ydot;
+  rhs(t, y, ydot);
+  ContactReport r;
+  r.lambda = lambda_;
+  r.phi = dyn_->values().phi;
+  r.phi_max = dyn_->phi_max(dyn_->values());
+  r.s = dyn_->values().s;
+  return r;
+}
+
+}  // namespace mbfe::runtime

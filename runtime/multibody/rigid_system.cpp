@@ -1,0 +1,161 @@
+#include "multibody/rigid_system.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "multibody/multibody_errors.h"
+
+namespace mbfe::runtime {
+
+namespace {
+
+void check_model(const mbfe_model_v1& model) {
+  if (model.abi_version != MBFE_MODEL_ABI_VERSION) {
+    std::ostringstream os;
+    os << "model '" << (model.model_name ? model.model_name : "?") << "' has ABI version "
+       << model.abi_version << ", expected " << MBFE_MODEL_ABI_VERSION
+       << " (regenerate the solver with this mbfe)";
+    throw std::invalid_argument(os.str());
+  }
+}
+
+std::string coordinate_name(const mbfe_model_v1& model, int i) {
+  if (model.coordinate_names != nullptr && model.coordinate_names[i] != nullptr) {
+    return model.coordinate_names[i];
+  }
+  return "q" + std::to_string(i);
+}
+
+}  // namespace
+
+std::vector<BodyInertia> body_inertias(const model::Model& model) {
+  std::vector<BodyInertia> out;
+  out.reserve(model.bodies.size());
+  for (const model::Body& b : model.bodies) out.push_back({b.name, b.mass, b.inertia});
+  return out;
+}
+
+void evaluate_rigid_terms(const mbfe_model_v1& model, const Eigen::VectorXd& q,
+                          const Eigen::VectorXd& qd, double t, RigidTerms& out) {
+  const int n = model.num_coordinates;
+  if (q.size() != n || qd.size() != n) {
+    std::ostringstream os;
+    os << "q has " << q.size() << " and qd " << qd.size() << " entries, expected " << n
+       << " each (one per body of model '" << model.model_name << "' in model order)";
+    throw std::invalid_argument(os.str());
+  }
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m_row(n, n);
+  model.mass_matrix(q.data(), m_row.data());
+  out.M = m_row;
+  out.F.resize(n);
+  out.Q.resize(n);
+  model.inertial_forces(q.data(), qd.data(), out.F.data());
+  model.generalized_forces(q.data(), qd.data(), t, out.Q.data());
+}
+
+void throw_singular_mass_matrix(const mbfe_model_v1& model,
+                                const std::vector<BodyInertia>& bodies,
+                                const Eigen::MatrixXd& M, double t) {
+  const int n = static_cast<int>(M.rows());
+  std::vector<std::string> coords;
+  std::ostringstream os;
+  os << "model '" << (model.model_name ? model.model_name : "?")
+     << "': mass matrix M(q) is singular or not positive definite at t = " << t << " s";
+  if (M.allFinite()) {
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (M + M.transpose()));
+    const Eigen::VectorXd& lam = eig.eigenvalues();
+    const double scale = std::max(lam.cwiseAbs().maxCoeff(), 1e-300);
+    // A direction of (near) zero or negative kinetic energy.
+    const double kNullRel = 1e-10;
+    std::vector<bool> in_null(n, false);
+    for (int k = 0; k < n; ++k) {
+      if (lam(k) > kNullRel * scale) continue;
+      for (int i = 0; i < n; ++i) {
+        if (std::abs(eig.eigenvectors()(i, k)) > 0.1) in_null[i] = true;
+      }
+    }
+    for (int i = 0; i < n; ++i) {
+      if (in_null[i]) coords.push_back(coordinate_name(model, i));
+    }
+    os << " (eigenvalues from " << lam(0) << " to " << lam(n - 1) << ")";
+  } else {
+    os << " (M has non-finite entries: the state is not finite)";
+  }
+  if (!coords.empty()) {
+    os << "; these coordinates move no mass: ";
+    for (std::size_t i = 0; i < coords.size(); ++i) os << (i ? ", " : "") << coords[i];
+  }
+  std::vector<std::string> massless;
+  for (const BodyInertia& b : bodies) {
+    if (b.mass == 0.0 && b.inertia == 0.0) massless.push_back(b.name);
+  }
+  if (!massless.empty()) {
+    os << "; bodies with mass 0 and inertia 0: ";
+    for (std::size_t i = 0; i < massless.size(); ++i) os << (i ? ", " : "") << massless[i];
+  }
+  os << ". Give the bodies that these coordinates move a mass or inertia (massless, "
+        "fictitious bodies need a massive successor that moves with every one of their "
+        "coordinates), or constrain the coordinate.";
+  throw SingularMassMatrixError(os.str(), t, std::move(coords), std::move(massless));
+}
+
+RigidSystem::RigidSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies)
+    : model_(model), bodies_(std::move(bodies)), nq_(model.num_coordinates) {
+  check_model(model);
+  if (!bodies_.empty() && static_cast<int>(bodies_.size()) != nq_) {
+    std::ostringstream os;
+    os << "RigidSystem: " << bodies_.size() << " body inertias given, expected " << nq_
+       << " (one per body of model '" << model.model_name << "')";
+    throw std::invalid_argument(os.str());
+  }
+  m_row_.resize(nq_, nq_);
+  m_.resize(nq_, nq_);
+  f_.resize(nq_);
+  q_force_.resize(nq_);
+  rhs_.resize(nq_);
+  qdd_.resize(nq_);
+  llt_ = Eigen::LLT<Eigen::MatrixXd>(nq_);
+}
+
+void RigidSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
+  if (y.size() != 2 * nq_) {
+    std::ostringstream os;
+    os << "RigidSystem: y has " << y.size() << " entries, expected " << 2 * nq_ << " ([q; qd])";
+    throw std::invalid_argument(os.str());
+  }
+  const double* q = y.data();
+  const double* qd = y.data() + nq_;
+  if (model_.dynamics != nullptr) {
+    model_.dynamics(q, qd, t, m_row_.data(), f_.data(), q_force_.data());
+  } else {
+    model_.mass_matrix(q, m_row_.data());
+    model_.inertial_forces(q, qd, f_.data());
+    model_.generalized_forces(q, qd, t, q_force_.data());
+  }
+  m_ = m_row_;
+  llt_.compute(m_);
+  if (llt_.info() != Eigen::Success || !(llt_.rcond() >= kMassRcondFloor)) {
+    throw_singular_mass_matrix(model_, bodies_, m_, t);
+  }
+  rhs_ = q_force_ - f_;
+  qdd_ = llt_.solve(rhs_);
+  ydot.resize(2 * nq_);
+  ydot.head(nq_) = y.tail(nq_);
+  ydot.tail(nq_) = qdd_;
+}
+
+std::string RigidSystem::name(int i) const {
+  if (i < nq_) return coordinate_name(model_, i);
+  return coordinate_name(model_, i - nq_) + "_dot";
+}
+
+double RigidSystem::kinetic_energy(const Eigen::VectorXd& y) {
+  model_.mass_matrix(y.data(), m_row_.data());
+  m_ = m_row_;
+  return 0.5 * y.tail(nq_).dot(m_ * y.tail(nq_));
+}
+
+}  // namespace mbfe::runtime

@@ -1,0 +1,93 @@
+// The rigid part of a model alone, M(q) q'' + F(q, q') = Q(q, q', t) (eq (6)),
+// as a first-order system y = [q; q'] for the integrators.
+//
+//   const mbfe_model_v1& model = *mbfe_model_double_pendulum();
+//   runtime::RigidSystem system(model, runtime::body_inertias(ir));
+//   auto stepper = runtime::make_stepper(runtime::parse_integrator("rk4"), system);
+//
+// The generated kernels write M, F, Q; the runtime factors M numerically
+// (LLT) at every evaluation. Nothing is allocated per rhs() call.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "abi/mbfe_model_abi.h"
+#include "integrators/ode_system.h"
+#include "model/model.h"
+
+namespace mbfe::runtime {
+
+/// Mass properties of one body, for diagnostics (which bodies carry no inertia).
+struct BodyInertia {
+  std::string name;
+  double mass = 0.0;     // kg
+  double inertia = 0.0;  // kg m^2 about the centre of mass
+};
+
+/// One entry per body of `model`, in model (= coordinate) order.
+std::vector<BodyInertia> body_inertias(const model::Model& model);
+
+/// M, F, Q of the rigid part at one state (Eigen, column-major).
+struct RigidTerms {
+  Eigen::MatrixXd M;  // nq x nq, kg / kg m / kg m^2 by coordinate type
+  Eigen::VectorXd F;  // nq, velocity-dependent inertial terms (N or N m)
+  Eigen::VectorXd Q;  // nq, gravity, loads, springs (N or N m)
+};
+
+/// Evaluates the kernels of `model` at (q, qd, t) into `out` (resized if needed).
+/// @throws std::invalid_argument if q or qd does not have num_coordinates entries.
+void evaluate_rigid_terms(const mbfe_model_v1& model, const Eigen::VectorXd& q,
+                          const Eigen::VectorXd& qd, double t, RigidTerms& out);
+
+/// Message and exception for a mass matrix that is not positive definite at
+/// (t, M): names the coordinates in its (near) null space and the bodies of
+/// `bodies` with no mass and no inertia. Used by RigidSystem and the coupled
+/// systems.
+[[noreturn]] void throw_singular_mass_matrix(const mbfe_model_v1& model,
+                                             const std::vector<BodyInertia>& bodies,
+                                             const Eigen::MatrixXd& M, double t);
+
+/// y = [q; q'] (2 nq entries); y' = [q'; M^-1 (Q - F)].
+class RigidSystem : public OdeSystem {
+ public:
+  /// @param model the generated solver; must outlive this object.
+  /// @param bodies mass properties in coordinate order, for the message of a
+  ///        singular mass matrix; empty = unknown (the message then names only
+  ///        the coordinates). @throws std::invalid_argument if `bodies` is not
+  ///        empty and has a size other than num_coordinates, or the ABI version
+  ///        differs from MBFE_MODEL_ABI_VERSION.
+  explicit RigidSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies = {});
+
+  int size() const override { return 2 * nq_; }
+  int num_coordinates() const { return nq_; }
+
+  /// @throws std::invalid_argument if y has the wrong size.
+  /// @throws SingularMassMatrixError if M(q) is not positive definite
+  ///         (reciprocal condition estimate below kMassRcondFloor).
+  void rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) override;
+
+  /// "<coordinate>" for q, "<coordinate>_dot" for q'.
+  std::string name(int i) const override;
+
+  /// Total mechanical energy is not defined by the ABI (no potential kernel);
+  /// kinetic energy 1/2 q'^T M(q) q' in J at y.
+  double kinetic_energy(const Eigen::VectorXd& y);
+
+  /// M is declared singular below this reciprocal condition estimate.
+  static constexpr double kMassRcondFloor = 1e-13;
+
+ private:
+  const mbfe_model_v1& model_;
+  std::vector<BodyInertia> bodies_;
+  int nq_;
+  // Workspace, sized once.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m_row_;
+  Eigen::MatrixXd m_;
+  Eigen::VectorXd f_, q_force_, rhs_, qdd_;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+};
+
+}  // namespace mbfe::runtime
