@@ -1,6 +1,8 @@
 // `mbfe modal MODEL.yaml [--json] [--all] [--beam NAME] [--modes K]`:
 // modal analysis of each beam and the state-space eigenvalues of eq (28),
 // printed as the paper's Table 1 (text) or as the JSON contract of issue 3.
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -8,8 +10,11 @@
 
 #include "cli_args.h"
 #include "commands.h"
+#include "damping/modal_adjustment.h"
 #include "modal_report.h"
 #include "model/parse_model.h"
+#include "plot_spectrum.h"
+#include "stability/step_limits.h"
 
 namespace mbfe::tool {
 
@@ -37,11 +42,57 @@ Options:
   --all         print every row (default: the first and last five, "..." between)
   --beam NAME   only this beam
   --modes K     modes found by the sparse path for beams above 2000 DOF (default 20)
+  --plot FILE.png  draw the original and adjusted eigenvalues in the complex
+                plane (-Re on a log axis) with forward Euler's stability
+                region for the step --step (needs gnuplot)
+  --step H      step for --plot's stability region (default: forward Euler's
+                limit of the adjusted model, or of the original without one)
+
+A beam with an `adjustment:` block (see docs/damping-adjustment.md) also gets
+the adjusted spectrum: printed beside the original (the paper's Table 1, right
+half) and, in JSON, an "adjusted" block of the same form as "original" plus
+"policy", "omega_limit", "adjusted_modes" and "floored_modes".
 
 Example:
   mbfe modal models/paper_beam.yaml
   mbfe modal models/paper_beam.yaml --json --beam beam1
+  mbfe modal models/paper_beam.yaml --plot spectrum.png --step 1.4e-5
 )";
+
+const char* policy_name(model::AdjustmentPolicy p) {
+  switch (p) {
+    case model::AdjustmentPolicy::kNone:
+      return "none";
+    case model::AdjustmentPolicy::kCap:
+      return "cap";
+    case model::AdjustmentPolicy::kPaperEq25:
+      return "paper_eq25";
+    case model::AdjustmentPolicy::kKeepSlow:
+      return "keep_slow";
+  }
+  return "?";
+}
+
+/// The adjusted half of Table 1, when the beam has an adjustment block.
+struct AdjustedResult {
+  bool present = false;
+  runtime::AdjustedModes modes;
+  runtime::StateSpectrum spectrum;
+};
+
+AdjustedResult adjust_beam(const model::Beam& beam, const BeamModalResult& r) {
+  AdjustedResult out;
+  if (!beam.adjustment.present || beam.adjustment.policy == model::AdjustmentPolicy::kNone) return out;
+  out.present = true;
+  const auto original = runtime::rayleigh_modes(r.basis.omega, beam.rayleigh_alpha, beam.rayleigh_beta);
+  try {
+    out.modes = runtime::adjust_modes(original, beam.adjustment);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("beam '" + beam.name + "': " + e.what());
+  }
+  out.spectrum = runtime::state_spectrum(out.modes.modes, r.basis.complete);
+  return out;
+}
 
 /// The JSON of one beam; an "adjusted" block goes next to "original".
 nlohmann::json beam_json(const BeamModalResult& r) {
@@ -56,7 +107,45 @@ nlohmann::json beam_json(const BeamModalResult& r) {
   return beam;
 }
 
-void print_beam_text(std::ostream& out, const BeamModalResult& r, bool all) {
+void add_adjusted_json(nlohmann::json& beam, const model::Beam& b, const AdjustedResult& a) {
+  if (!a.present) return;
+  nlohmann::json block = spectrum_json(a.spectrum);
+  block["policy"] = policy_name(b.adjustment.policy);
+  block["omega_limit"] = b.adjustment.omega_limit;
+  block["margin"] = b.adjustment.margin;
+  block["zeta_min"] = b.adjustment.zeta_min;
+  block["adjusted_modes"] = a.modes.adjusted;
+  block["floored_modes"] = a.modes.floored;
+  beam["adjusted"] = std::move(block);
+}
+
+void print_adjusted_text(std::ostream& out, const model::Beam& b, const BeamModalResult& r,
+                         const AdjustedResult& a, bool all) {
+  if (!a.present) return;
+  const int dof = static_cast<int>(r.system.M.rows());
+  out << "adjusted (policy " << policy_name(b.adjustment.policy) << ", omega_limit " << b.adjustment.omega_limit
+      << " rad/s, margin " << b.adjustment.margin << ", zeta_min " << b.adjustment.zeta_min << "): "
+      << a.modes.adjusted << " modes adjusted, " << a.modes.floored << " raised to zeta_min\n";
+  const auto left = spectrum_table_lines(r.original, all);
+  const auto right = spectrum_table_lines(a.spectrum, all);
+  const std::string blank(spectrum_table_width(), ' ');
+  const std::string gap = "  |";
+  std::string title_left = "original (Table 1, left half)";
+  title_left.resize(spectrum_table_width(), ' ');
+  out << title_left << gap << "adjusted (Table 1, right half)\n";
+  for (std::size_t i = 0; i < std::max(left.size(), right.size()); ++i)
+    out << (i < left.size() ? left[i] : blank) << gap << (i < right.size() ? right[i] : "") << "\n";
+  out << "summary (adjusted): " << spectrum_summary(a.spectrum, dof) << "\n";
+  if (a.spectrum.complete && r.original.h_max_forward_euler > 0.0) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "forward-Euler h_max gain: %.0fx\n",
+                  a.spectrum.h_max_forward_euler / r.original.h_max_forward_euler);
+    out << buf;
+  }
+}
+
+void print_beam_text(std::ostream& out, const model::Beam& b, const BeamModalResult& r, const AdjustedResult& a,
+                     bool all) {
   const int dof = static_cast<int>(r.system.M.rows());
   out << "beam '" << r.name << "': " << dof << " DOF, Rayleigh alpha = " << r.system.rayleigh_alpha
       << " 1/s, beta = " << r.system.rayleigh_beta << " s ("
@@ -64,6 +153,11 @@ void print_beam_text(std::ostream& out, const BeamModalResult& r, bool all) {
                   : "sparse Lanczos, lowest " + std::to_string(r.basis.omega.size()) + " modes")
       << ")\n";
   out << "state-space eigenvalues of eq (28), sorted by modulus (the paper's Table 1):\n";
+  if (a.present) {
+    out << "summary (original): " << spectrum_summary(r.original, dof) << "\n";
+    print_adjusted_text(out, b, r, a, all);
+    return;
+  }
   for (const std::string& line : spectrum_table_lines(r.original, all)) out << line << "\n";
   out << "summary: " << spectrum_summary(r.original, dof) << "\n";
 }
@@ -71,7 +165,7 @@ void print_beam_text(std::ostream& out, const BeamModalResult& r, bool all) {
 }  // namespace
 
 int cmd_modal(const Args& args) {
-  const ParsedArgs parsed(args, {"beam", "modes"}, {"json", "all", "help"});
+  const ParsedArgs parsed(args, {"beam", "modes", "plot", "step"}, {"json", "all", "help"});
   if (parsed.has("help")) {
     std::cout << kHelp;
     return 0;
@@ -107,23 +201,52 @@ int cmd_modal(const Args& args) {
   }
 
   std::vector<BeamModalResult> results;
+  std::vector<AdjustedResult> adjusted;
   try {
-    for (const model::Beam* b : chosen) results.push_back(analyse_beam(*b, m.gravity, options));
+    for (const model::Beam* b : chosen) {
+      results.push_back(analyse_beam(*b, m.gravity, options));
+      adjusted.push_back(adjust_beam(*b, results.back()));
+    }
   } catch (const std::invalid_argument& e) {
     std::cerr << "mbfe modal: " << path << ": " << e.what() << "\n";
     return 2;
+  }
+  const auto step = parsed.number("step");
+  if (step && !(*step > 0)) throw UsageError("--step must be > 0 s");
+  if (step && !parsed.has("plot")) throw UsageError("--step goes with --plot FILE.png");
+  if (const auto plot = parsed.value("plot")) {
+    if (plot->empty()) throw UsageError("--plot needs a file name");
+    SpectrumPlot picture;
+    picture.title = "model '" + m.name + "'";
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      const std::string prefix = results.size() > 1 ? results[i].name + " " : "";
+      picture.series.push_back({prefix + "original", results[i].original.eigenvalues});
+      if (adjusted[i].present) picture.series.push_back({prefix + "adjusted", adjusted[i].spectrum.eigenvalues});
+    }
+    // Default step: the forward-Euler limit of the (first) adjusted spectrum.
+    double h = 0.0;
+    for (std::size_t i = 0; i < results.size() && h == 0.0; ++i)
+      h = adjusted[i].present ? adjusted[i].spectrum.h_max_forward_euler : 0.0;
+    if (h == 0.0 || !std::isfinite(h)) h = results.front().original.h_max_forward_euler;
+    picture.step = step.value_or(h);
+    const int status = draw_spectrum_plot(picture, *plot);
+    if (status != 0) return status;
   }
 
   if (parsed.has("json")) {
     nlohmann::json root;
     root["beams"] = nlohmann::json::array();
-    for (const BeamModalResult& r : results) root["beams"].push_back(beam_json(r));
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      nlohmann::json beam = beam_json(results[i]);
+      add_adjusted_json(beam, *chosen[i], adjusted[i]);
+      root["beams"].push_back(std::move(beam));
+    }
     std::cout << root.dump(2) << "\n";
     return 0;
   }
   for (size_t i = 0; i < results.size(); ++i) {
     if (i > 0) std::cout << "\n";
-    print_beam_text(std::cout, results[i], parsed.has("all"));
+    print_beam_text(std::cout, *chosen[i], results[i], adjusted[i], parsed.has("all"));
   }
   return 0;
 }

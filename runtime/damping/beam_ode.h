@@ -53,6 +53,7 @@ class ModalBeamOde final : public LinearSecondOrderSystem {
   /// Modal state -> nodal positions q = Phi eta (n).
   void positions(const Eigen::VectorXd& y, Eigen::VectorXd& q) const;
   const Eigen::MatrixXd& phi() const { return phi_; }
+  const Eigen::VectorXd& modal_load() const { return p_; }  // Phi^T P (N)
 
  private:
   Eigen::MatrixXd phi_, mphi_;  // Phi, M Phi

@@ -160,7 +160,7 @@ SimulationResult run_simulation(OdeSystem& system, const IntegratorSpec& integra
     t = t_next;
     result.steps = k;
     running_max = std::max(running_max, norm);
-    if ((k & (k - 1)) == 0) trailing_max = running_max;
+    if ((k & (k - 1)) == 0 && options.reference_norm == 0.0) trailing_max = running_max;
     last_emitted = (k % every == 0) || k == total;
     if (last_emitted) {
       sink(t, y);

@@ -20,6 +20,8 @@
 // where R is the largest |y| seen up to the last step number that is a power
 // of two (so R trails the run by at most half its length: a bounded response
 // raises R, an instability grows by the factor within a stretch of steps).
+// R is used only when no reference_norm is given (R = 0 otherwise): a known
+// scale catches an instability as soon as it is 1e6 times that scale.
 // divergence_factor defaults to 1e6; reference_norm is a scale the caller
 // knows (for a beam: the norm of its static state under the load), 0 if none.
 // While all three are 0 (a system at rest, no reference) only finiteness is

@@ -189,8 +189,16 @@ StepLimit stable_step(const IntegratorSpec& m, std::complex<double> lambda) {
 }
 
 StepLimit stable_step(const IntegratorSpec& m, const std::vector<std::complex<double>>& spectrum) {
+  // Every region here is symmetric about the real axis (real coefficients):
+  // one of each conjugate pair, and each distinct value once, is enough.
+  std::vector<cplx> distinct;
+  distinct.reserve(spectrum.size());
+  for (const auto& l : spectrum) distinct.emplace_back(l.real(), std::abs(l.imag()));
+  std::sort(distinct.begin(), distinct.end(),
+            [](const cplx& a, const cplx& b) { return a.real() != b.real() ? a.real() < b.real() : a.imag() < b.imag(); });
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
   StepLimit out;
-  for (const auto& l : spectrum) {
+  for (const auto& l : distinct) {
     const StepLimit one = stable_step(m, l);
     if (one.kind == StepLimit::Kind::kNone) return one;
     if (one.kind == StepLimit::Kind::kFinite &&

@@ -1,0 +1,84 @@
+#include "damping/beam_model.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "modal/modal_analysis.h"
+
+namespace mbfe::runtime {
+
+BeamModel analyse_beams(const model::Model& model, int dense_limit) {
+  BeamModel out;
+  std::vector<ModalDynamics> all_original, all_adjusted;
+  for (const model::Beam& b : model.beams) {
+    BeamPart part;
+    part.system = assemble_beam(b, model.gravity);
+    const int n = static_cast<int>(part.system.M.rows());
+    if (n > dense_limit)
+      throw std::invalid_argument("beam '" + b.name + "' has " + std::to_string(n) +
+                                  " DOFs; time integration and the stability advisor use every mode and "
+                                  "handle at most " +
+                                  std::to_string(dense_limit) + " per beam");
+    ModalOptions mo;
+    mo.dense_limit = dense_limit;
+    part.basis = modal_analysis(part.system, mo);
+    part.original = rayleigh_modes(part.basis.omega, part.system.rayleigh_alpha, part.system.rayleigh_beta);
+    part.has_adjustment = b.adjustment.present && b.adjustment.policy != model::AdjustmentPolicy::kNone;
+    try {
+      model::Adjustment none;
+      none.policy = model::AdjustmentPolicy::kNone;
+      part.adjusted = adjust_modes(part.original, part.has_adjustment ? b.adjustment : none);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("beam '" + b.name + "': " + e.what());
+    }
+    part.offset = out.dof;
+    out.dof += n;
+    out.any_adjustment = out.any_adjustment || part.has_adjustment;
+    all_original.insert(all_original.end(), part.original.begin(), part.original.end());
+    all_adjusted.insert(all_adjusted.end(), part.adjusted.modes.begin(), part.adjusted.modes.end());
+    out.beams.push_back(std::move(part));
+  }
+  out.original = state_spectrum(all_original);
+  out.adjusted = state_spectrum(all_adjusted);
+  return out;
+}
+
+std::unique_ptr<ModalBeamOde> modal_beam_ode(const BeamModel& beams, bool adjusted) {
+  const int n = beams.dof;
+  ModalBasis basis;
+  basis.omega.resize(n);
+  basis.phi = Eigen::MatrixXd::Zero(n, n);
+  basis.complete = true;
+  std::vector<Eigen::Triplet<double>> trip;
+  Eigen::VectorXd P(n);
+  std::vector<ModalDynamics> modes;
+  for (const BeamPart& b : beams.beams) {
+    const int m = static_cast<int>(b.system.M.rows());
+    basis.omega.segment(b.offset, m) = b.basis.omega;
+    basis.phi.block(b.offset, b.offset, m, m) = b.basis.phi;
+    P.segment(b.offset, m) = b.system.P;
+    for (int k = 0; k < b.system.M.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(b.system.M, k); it; ++it)
+        trip.emplace_back(b.offset + it.row(), b.offset + it.col(), it.value());
+    const auto& src = adjusted ? b.adjusted.modes : b.original;
+    modes.insert(modes.end(), src.begin(), src.end());
+  }
+  Eigen::SparseMatrix<double> M(n, n);
+  M.setFromTriplets(trip.begin(), trip.end());
+  return std::make_unique<ModalBeamOde>(basis, modes, M, P);
+}
+
+Eigen::VectorXd modal_static_state(const BeamModel& beams, bool adjusted, const ModalBeamOde& ode) {
+  const int n = beams.dof;
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
+  const Eigen::VectorXd& p = ode.modal_load();
+  int j = 0;
+  for (const BeamPart& b : beams.beams)
+    for (const ModalDynamics& m : adjusted ? b.adjusted.modes : b.original) {
+      if (m.k > 0.0) y[j] = p[j] / m.k;
+      ++j;
+    }
+  return y;
+}
+
+}  // namespace mbfe::runtime

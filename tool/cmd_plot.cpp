@@ -1,0 +1,130 @@
+// `mbfe plot results.csv -o out.png [--columns a,b] [--title T]`: time
+// histories of a simulation CSV drawn by gnuplot (like the paper's Fig. 5).
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "plot_gnuplot.h"
+
+namespace mbfe::tool {
+
+namespace {
+
+constexpr const char* kHelp = R"(Usage: mbfe plot RESULTS.csv -o OUT.png [--columns NAME,...] [--title TEXT]
+
+Draws columns of a CSV written by `mbfe simulate` against its first column (t)
+into a PNG, with gnuplot (Debian: gnuplot-nox).
+
+Options:
+  -o, --out OUT.png   the picture to write (required)
+  --columns A,B,...   the columns to draw (default: every column after the
+                      first, at most 8; a beam CSV has one per coordinate, so
+                      name the ones you want, or simulate with --probe)
+  --title TEXT        title of the plot (default: the CSV's file name)
+
+Exit status: 0 drawn; 2 bad input or gnuplot missing; 1 gnuplot failed.
+
+Example:
+  mbfe simulate models/paper_beam.yaml --integrator forward_euler --step 1.4e-5 --t-end 1 \
+      --probe beam1@0.5 --out midspan.csv
+  mbfe plot midspan.csv -o midspan.png
+)";
+
+constexpr std::size_t kDefaultColumns = 8;
+
+std::vector<std::string> split(const std::string& text, char sep) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, sep)) {
+    if (!item.empty() && item.back() == '\r') item.pop_back();
+    out.push_back(item);
+  }
+  return out;
+}
+
+}  // namespace
+
+int cmd_plot(const Args& raw) {
+  Args args;
+  for (const std::string& a : raw) args.push_back(a == "-o" ? "--out" : a);
+  const ParsedArgs parsed(args, {"out", "columns", "title"}, {"help"});
+  if (parsed.has("help")) {
+    std::cout << kHelp;
+    return 0;
+  }
+  if (parsed.positional().size() != 1)
+    throw UsageError("expected one RESULTS.csv, got " + std::to_string(parsed.positional().size()) +
+                     " arguments (see --help)");
+  const auto out = parsed.value("out");
+  if (!out || out->empty()) throw UsageError("-o OUT.png is required");
+  const std::string& csv = parsed.positional()[0];
+
+  std::ifstream in(csv);
+  if (!in) {
+    std::cerr << "mbfe plot: cannot open '" << csv << "'\n";
+    return 2;
+  }
+  std::string header_line, first_row;
+  std::getline(in, header_line);
+  std::getline(in, first_row);
+  const std::vector<std::string> header = split(header_line, ',');
+  if (header.size() < 2 || first_row.empty()) {
+    std::cerr << "mbfe plot: " << csv << ": expected a header line with at least two columns and one data row\n";
+    return 2;
+  }
+  std::vector<std::size_t> chosen;  // 0-based column indices
+  if (const auto cols = parsed.value("columns")) {
+    for (const std::string& name : split(*cols, ',')) {
+      std::size_t i = 0;
+      while (i < header.size() && header[i] != name) ++i;
+      if (i == header.size()) {
+        std::string some;
+        for (std::size_t k = 1; k < header.size() && k <= 6; ++k) some += (k > 1 ? ", " : "") + header[k];
+        throw UsageError("--columns: no column '" + name + "' in " + csv + " (it has " +
+                         std::to_string(header.size()) + " columns: " + some + (header.size() > 7 ? ", ..." : "") +
+                         ")");
+      }
+      chosen.push_back(i);
+    }
+  } else {
+    for (std::size_t i = 1; i < header.size() && chosen.size() < kDefaultColumns; ++i) chosen.push_back(i);
+    if (header.size() - 1 > kDefaultColumns)
+      std::cerr << "mbfe plot: drawing the first " << kDefaultColumns << " of " << header.size() - 1
+                << " columns; choose with --columns\n";
+  }
+
+  const auto gnuplot = find_gnuplot();
+  if (!gnuplot) {
+    std::cerr << "mbfe plot: " << gnuplot_missing_message() << "\n";
+    return 2;
+  }
+  std::ostringstream s;
+  s << "set terminal pngcairo size 1000,600 enhanced font 'sans,10'\n"
+    << "set output " << gnuplot_quote(*out) << "\n"
+    << "set datafile separator ','\n"
+    << "set title " << gnuplot_quote(parsed.value("title").value_or(csv)) << " noenhanced\n"
+    << "set xlabel " << gnuplot_quote(header[0] == "t" ? "t [s]" : header[0]) << " noenhanced\n"
+    << "set grid\nset key outside right noenhanced\nset format y '%g'\n"
+    << "plot ";
+  for (std::size_t k = 0; k < chosen.size(); ++k) {
+    s << (k ? ", " : "") << gnuplot_quote(csv) << " every ::1 using 1:" << chosen[k] + 1 << " with lines lw 1.5 title "
+      << gnuplot_quote(header[chosen[k]]);
+  }
+  s << "\n";
+  const int status = run_gnuplot(*gnuplot, s.str());
+  if (status != 0) {
+    std::cerr << "mbfe plot: gnuplot " << (status < 0 ? "could not be started" : "failed (exit status " +
+                                                                                  std::to_string(status) + ")")
+              << "\n";
+    return 1;
+  }
+  std::cerr << "mbfe plot: wrote " << *out << "\n";
+  return 0;
+}
+
+}  // namespace mbfe::tool
