@@ -40,12 +40,12 @@ void inertial_forces(const double* q, const double* qd, double* F) {
   const double t9 = -t0*t8;
   const double t10 = -t1*t8;
   const double t11 = t5*t5;
-  const double t12 = -t11*t6 + t9;
-  const double t13 = -t11*t7 + t10;
-  const double t14 = -t9 + t11*t6;
-  const double t15 = -t10 + t11*t7;
-  const double t16 = -t15*t6 + t14*t7;
-  const double t17 = -t1*t12 + t0*t13 + t16;
+  const double t12 = t9 - t11*t6;
+  const double t13 = t10 - t11*t7;
+  const double t14 = t11*t6 - t9;
+  const double t15 = t11*t7 - t10;
+  const double t16 = t14*t7 - t15*t6;
+  const double t17 = t0*t13 + t16 - t1*t12;
   F[0] = t17;
   F[1] = t16;
 }
@@ -60,7 +60,7 @@ void generalized_forces(const double* q, const double* qd, double t, double* Q) 
   const double t3 = std::cos(t2);
   const double t4 = 0.5*t3;
   const double t5 = -9.81*t4;
-  const double t6 = -9.81*t0 - 9.81*t1 + t5;
+  const double t6 = t5 - 9.81*t0 - 9.81*t1;
   Q[0] = t6;
   Q[1] = t5;
 }
@@ -81,14 +81,14 @@ void dynamics(const double* q, const double* qd, double t, double* M, double* F,
   const double t10 = -t0*t9;
   const double t11 = -t1*t9;
   const double t12 = t6*t6;
-  const double t13 = -t12*t7 + t10;
-  const double t14 = -t12*t8 + t11;
-  const double t15 = -t10 + t12*t7;
-  const double t16 = -t11 + t12*t8;
-  const double t17 = -t16*t7 + t15*t8;
+  const double t13 = t10 - t12*t7;
+  const double t14 = t11 - t12*t8;
+  const double t15 = t12*t7 - t10;
+  const double t16 = t12*t8 - t11;
+  const double t17 = t15*t8 - t16*t7;
   const double t18 = -9.81*t7;
-  const double t19 = -t1*t13 + t0*t14 + t17;
-  const double t20 = -9.81*t0 - 9.81*t2 + t18;
+  const double t19 = t0*t14 + t17 - t1*t13;
+  const double t20 = t18 - 9.81*t0 - 9.81*t2;
   const double t21 = 2.0*t0*t7 + 2.0*t1*t8 + 1.6666666666666667;
   const double t22 = t0*t7 + t1*t8 + 0.3333333333333333;
   M[0] = t21;

@@ -22,7 +22,7 @@ void mass_matrix(const double* q, double* M) {
   const double t8 = 0.35*t4;
   const double t9 = 1.4*t0*t7 + 1.4*t1*t8 + 0.8166666666666665;
   const double t10 = t5*t7 + t6*t8 + 0.16333333333333333;
-  const double t11 = -1.2*t8 - t7 + t10;
+  const double t11 = t10 - 1.2*t8 - t7;
   M[0] = t9;
   M[1] = t11;
   M[2] = t11;
@@ -43,12 +43,12 @@ void inertial_forces(const double* q, const double* qd, double* F) {
   const double t9 = -0.7*t0*t8;
   const double t10 = -0.7*t1*t8;
   const double t11 = t5*t5;
-  const double t12 = -t11*t6 + t9;
-  const double t13 = -t11*t7 + t10;
-  const double t14 = -t9 + t11*t6;
-  const double t15 = -t10 + t11*t7;
-  const double t16 = -t15*t6 + t14*t7;
-  const double t17 = -0.7*t1*t12 + 0.7*t0*t13 + t16;
+  const double t12 = t9 - t11*t6;
+  const double t13 = t10 - t11*t7;
+  const double t14 = t11*t6 - t9;
+  const double t15 = t11*t7 - t10;
+  const double t16 = t14*t7 - t15*t6;
+  const double t17 = 0.7*t0*t13 + t16 - 0.7*t1*t12;
   F[0] = t17;
   F[1] = t16;
 }
@@ -63,7 +63,7 @@ void generalized_forces(const double* q, const double* qd, double t, double* Q) 
   const double t3 = std::cos(t2);
   const double t4 = 0.35*t3;
   const double t5 = -9.81*t4;
-  const double t6 = -6.867*t0 - 9.81*t1 + t5;
+  const double t6 = t5 - 6.867*t0 - 9.81*t1;
   Q[0] = t6;
   Q[1] = t5;
 }
@@ -86,17 +86,17 @@ void dynamics(const double* q, const double* qd, double t, double* M, double* F,
   const double t12 = -0.7*t0*t11;
   const double t13 = -0.7*t1*t11;
   const double t14 = t6*t6;
-  const double t15 = -t14*t9 + t12;
-  const double t16 = -t10*t14 + t13;
-  const double t17 = -t12 + t14*t9;
-  const double t18 = -t13 + t10*t14;
-  const double t19 = -t18*t9 + t10*t17;
+  const double t15 = t12 - t14*t9;
+  const double t16 = t13 - t10*t14;
+  const double t17 = t14*t9 - t12;
+  const double t18 = t10*t14 - t13;
+  const double t19 = t10*t17 - t18*t9;
   const double t20 = -9.81*t9;
-  const double t21 = -0.7*t1*t15 + 0.7*t0*t16 + t19;
-  const double t22 = -6.867*t0 - 9.81*t2 + t20;
+  const double t21 = 0.7*t0*t16 + t19 - 0.7*t1*t15;
+  const double t22 = t20 - 6.867*t0 - 9.81*t2;
   const double t23 = 1.4*t0*t9 + 1.4*t1*t10 + 0.8166666666666665;
   const double t24 = t10*t8 + t7*t9 + 0.16333333333333333;
-  const double t25 = -1.2*t10 - t9 + t24;
+  const double t25 = t24 - 1.2*t10 - t9;
   M[0] = t23;
   M[1] = t25;
   M[2] = t25;

@@ -87,17 +87,28 @@ std::string CppPrinter::print(const ex& e) const {
 }
 
 std::string CppPrinter::print_add(const ex& e) const {
-  std::vector<ex> terms = operands_sorted(e, *this);
-  // A constant term reads best at the end: "t1*t2 + 0.5".
-  std::stable_partition(terms.begin(), terms.end(), [](const ex& t) { return !is_a<numeric>(t); });
+  // Positive terms first, then negative ones, each group by its text, and a
+  // constant at the end: "t1*t2 - t3 + 0.5" reads as a human would write it.
+  std::vector<std::pair<std::string, bool>> positive, negative;  // (text of |term|, is constant)
+  for (std::size_t i = 0; i < e.nops(); ++i) {
+    const ex term = e.op(i);
+    const bool minus = is_negative_term(term);
+    (minus ? negative : positive).emplace_back(print(minus ? ex(-term) : term), is_a<numeric>(term));
+  }
+  auto by_text = [](const auto& a, const auto& b) { return a.second != b.second ? b.second : a.first < b.first; };
+  std::sort(positive.begin(), positive.end(), by_text);
+  std::sort(negative.begin(), negative.end(), by_text);
+  // A constant goes last whichever its sign.
+  std::vector<std::pair<std::string, bool>> ordered;  // (text, negative)
+  std::vector<std::pair<std::string, bool>> constants;
+  for (const auto& [text, constant] : positive) (constant ? constants : ordered).emplace_back(text, false);
+  for (const auto& [text, constant] : negative) (constant ? constants : ordered).emplace_back(text, true);
+  ordered.insert(ordered.end(), constants.begin(), constants.end());
   std::string text;
-  for (std::size_t i = 0; i < terms.size(); ++i) {
-    const bool negative = is_negative_term(terms[i]);
-    const std::string body = print(negative ? ex(-terms[i]) : terms[i]);
-    if (i == 0)
-      text = negative ? "-" + print_factor(-terms[i]) : body;
-    else
-      text += (negative ? " - " : " + ") + body;
+  for (std::size_t i = 0; i < ordered.size(); ++i) {
+    const auto& [body, minus] = ordered[i];
+    if (i == 0) text = minus ? "-" + body : body;
+    else text += (minus ? " - " : " + ") + body;
   }
   return text;
 }
@@ -153,18 +164,34 @@ std::string CppPrinter::print_power(const ex& e) const {
 
 long CppPrinter::count_operations(const ex& e) {
   if (is_a<numeric>(e) || is_a<GiNaC::symbol>(e)) return 0;
+  if (is_a<GiNaC::mul>(e)) {
+    // Printed as num1*num2*.../(den1*den2*...): count the joins, not the
+    // divisions each power would cost on its own.
+    long ops = 0, numerators = 0, denominators = 0;
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      const ex& f = e.op(i);
+      if (is_a<numeric>(f)) {
+        if (GiNaC::abs(GiNaC::ex_to<numeric>(f)) != 1) ++numerators;  // a unit is a sign only
+        continue;
+      }
+      const bool reciprocal = is_a<GiNaC::power>(f) && is_a<numeric>(f.op(1)) &&
+                              GiNaC::ex_to<numeric>(f.op(1)).is_integer() &&
+                              GiNaC::ex_to<numeric>(f.op(1)).is_negative();
+      if (reciprocal) {
+        ops += count_operations(GiNaC::power(f.op(0), -f.op(1)));
+        ++denominators;
+      } else {
+        ops += count_operations(f);
+        ++numerators;
+      }
+    }
+    ops += std::max(0L, numerators - 1);
+    if (denominators > 0) ops += 1 + (denominators - 1);  // one division, denominators multiplied
+    return ops;
+  }
   long inner = 0;
   for (std::size_t i = 0; i < e.nops(); ++i) inner += count_operations(e.op(i));
   if (is_a<GiNaC::add>(e)) return inner + static_cast<long>(e.nops()) - 1;
-  if (is_a<GiNaC::mul>(e)) {
-    long factors = 0;
-    for (std::size_t i = 0; i < e.nops(); ++i) {
-      const ex& f = e.op(i);
-      if (is_a<numeric>(f) && GiNaC::abs(GiNaC::ex_to<numeric>(f)) == 1) continue;  // sign only
-      ++factors;
-    }
-    return inner + std::max(0L, factors - 1);
-  }
   if (is_a<GiNaC::power>(e)) {
     const ex exponent = e.op(1);
     if (is_a<numeric>(exponent) && GiNaC::ex_to<numeric>(exponent).is_integer()) {
