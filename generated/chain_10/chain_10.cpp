@@ -432,7 +432,7 @@ void generalized_forces(const double* q, const double* qd, double t, double* Q) 
   const double t31 = t30 - 9.81*t21 - 9.81*t22;
   const double t32 = t31 - 14.715*t18 - 9.81*t19;
   const double t33 = t32 - 19.62*t15 - 9.81*t16;
-  const double t34 = t33 - 24.525000000000002*t12 - 9.81*t13;
+  const double t34 = t33 - 24.525*t12 - 9.81*t13;
   const double t35 = t34 - 29.43*t9 - 9.81*t10;
   const double t36 = t35 - 34.335*t6 - 9.81*t7;
   const double t37 = t36 - 39.24*t3 - 9.81*t4;
@@ -592,7 +592,7 @@ void dynamics(const double* q, const double* qd, double t, double* M, double* F,
   const double t137 = t42*t55 - t45;
   const double t138 = t43*t55 - t46;
   const double t139 = 0.5*t130*t37 + t133 + t137*t43 - 0.5*t129*t38 - t138*t42;
-  const double t140 = t134 - 24.525000000000002*t37 - 9.81*t42;
+  const double t140 = t134 - 24.525*t37 - 9.81*t42;
   const double t141 = t135 + t34 - t31*t44;
   const double t142 = t136 + t35 - t32*t44;
   const double t143 = t31*t44 - t34;

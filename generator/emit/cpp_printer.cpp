@@ -23,6 +23,11 @@ std::string print_double(double value) {
     if (std::strtod(buffer, nullptr) == value) break;
   }
   std::string text = buffer;
+  // Whole numbers read best in fixed notation: "10.0", not "1e+01".
+  if (value == std::floor(value) && std::fabs(value) < 1e15) {
+    std::snprintf(buffer, sizeof buffer, "%.0f", value);
+    text = buffer;
+  }
   if (text.find_first_of(".en") == std::string::npos) text += ".0";
   return text;
 }

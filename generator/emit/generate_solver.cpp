@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "emit/cpp_printer.h"
+#include "symbolic/contact_kinematics.h"
 #include "symbolic/cse.h"
 #include "symbolic/rigid_dynamics.h"
 
@@ -119,6 +120,36 @@ GeneratedSolver generate_solver(const model::Model& model) {
     else solver.fused_operations = e.operations;
     kernels << "\n" << e.text;
   }
+  // Contact kernels (Section 4): same inputs q, qd, plus the element's DOFs.
+  ContactSymbols contact_symbols;
+  contact_symbols.q = d.q;
+  contact_symbols.qd = d.qd;
+  for (int l = 0; l < 4; ++l) {
+    contact_symbols.qe.emplace_back("qe" + std::to_string(l));
+    contact_symbols.qed.emplace_back("qed" + std::to_string(l));
+    inputs.emplace(contact_symbols.qe[l], "qe[" + std::to_string(l) + "]");
+    inputs.emplace(contact_symbols.qed[l], "qed[" + std::to_string(l) + "]");
+  }
+  inputs.emplace(contact_symbols.s0, "s0");
+  inputs.emplace(contact_symbols.le, "le");
+  params.push_back({"qe", {contact_symbols.qe.begin(), contact_symbols.qe.end()}});
+  params.push_back({"qed", {contact_symbols.qed.begin(), contact_symbols.qed.end()}});
+  params.push_back({"s0", {contact_symbols.s0}});
+  params.push_back({"le", {contact_symbols.le}});
+  std::vector<ContactKernels> contacts = derive_contacts(model, contact_symbols, d.code);
+  std::ostringstream contact_text;
+  for (ContactKernels& c : contacts) {
+    for (Kernel* k : {&c.position, &c.phi, &c.jacobians, &c.gamma}) {
+      eliminate_common_subexpressions(*k);
+      const EmittedKernel e = emit_kernel(*k, inputs, params, "static ");
+      solver.operations.emplace_back(k->name, e.operations);
+      contact_text << "\n" << e.text;
+    }
+    // The ABI wants the position as a return value.
+    contact_text << "\nstatic double " << c.position.name << "_value(const double* q) {\n  double s = 0.0;\n  "
+                 << c.position.name << "(q, &s);\n  return s;\n}\n";
+  }
+
   std::ostringstream points;
   for (auto& pk : d.points) {
     eliminate_common_subexpressions(pk.kernel);
@@ -147,6 +178,7 @@ GeneratedSolver generate_solver(const model::Model& model) {
   std::ostringstream source;
   source << banner(model, name + ".cpp", solver) << "#include \"" << name << ".h\"\n\n#include <cmath>\n\n"
          << "namespace mbfe_generated {\nnamespace " << name << " {\n" << kernels.str() << points.str()
+         << contact_text.str()
          << "\n// Ground-frame position of point `point` of body `body` (indices in model order).\n"
          << "void point_position(const double* q, int body, int point, double* xy) {\n";
   for (const auto& pk : d.points)
@@ -155,13 +187,23 @@ GeneratedSolver generate_solver(const model::Model& model) {
   source << "  (void)q;\n  xy[0] = xy[1] = 0.0;  // unknown point: the caller validated indices\n}\n\n"
          << "namespace {\n\nconst char* const kCoordinateNames[] = {";
   for (int i = 0; i < n; ++i) source << (i ? ", " : "") << "\"" << model.bodies[i].name << "\"";
-  source << "};\n\nconst mbfe_model_v1 kModel = {\n"
+  source << "};\n\n";
+  if (!contacts.empty()) {
+    source << "const mbfe_contact_kernels_v1 kContacts[] = {\n";
+    for (const ContactKernels& c : contacts)
+      source << "    {\"" << c.name << "\", " << c.type << ", " << c.beam << ", " << print_double(c.at) << ", "
+             << c.rows << ", " << c.position.name << "_value, " << c.phi.name << ", " << c.jacobians.name << ", "
+             << c.gamma.name << "},\n";
+    source << "};\n\n";
+  }
+  source << "const mbfe_model_v1 kModel = {\n"
          << "    MBFE_MODEL_ABI_VERSION,\n"
          << "    \"" << name << "\",\n"
          << "    \"" << model.source_sha256 << "\",\n"
          << "    \"" << generator_version() << "\",\n"
          << "    kNumCoordinates,\n    kCoordinateNames,\n    mass_matrix,\n    inertial_forces,\n"
-         << "    generalized_forces,\n    point_position,\n    0,\n    nullptr,\n    dynamics,\n};\n\n"
+         << "    generalized_forces,\n    point_position,\n    " << contacts.size() << ",\n    "
+         << (contacts.empty() ? "nullptr" : "kContacts") << ",\n    dynamics,\n};\n\n"
          << "}  // namespace\n}  // namespace " << name << "\n}  // namespace mbfe_generated\n\n"
          << "extern \"C\" const mbfe_model_v1* " << entry << "(void) { return &" << ns << "::kModel; }\n\n"
          << "#ifdef MBFE_SHARED_ENTRY  // defined when compiled into a run-time loaded library\n"

@@ -1,7 +1,10 @@
 #include "symbolic/code_list.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstdint>
 #include <functional>
 #include <set>
@@ -17,10 +20,30 @@ bool is_atomic(const GiNaC::ex& e) {
 GiNaC::numeric exact(double value) {
   if (!std::isfinite(value)) throw std::invalid_argument("non-finite number in the model");
   if (value == 0.0) return 0;
-  int exponent = 0;
-  const double fraction = std::frexp(value, &exponent);  // value = fraction * 2^exponent
-  const auto mantissa = static_cast<long long>(std::ldexp(fraction, 53));  // exact: 53 bits
-  return GiNaC::numeric(mantissa) * GiNaC::numeric(2).power(exponent - 53);
+  // The shortest decimal that reads back as this double ("0.7", not the
+  // dyadic 3152519739159347/2^52): the same double when printed, small
+  // rationals in the algebra, and products rounded once, at the end.
+  char text[64];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*e", digits - 1, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
+  // text = [-]d.ddde[+-]xx
+  const std::string str = text;
+  const std::size_t e = str.find('e');
+  long long mantissa = 0;
+  int fraction_digits = 0;
+  bool after_point = false;
+  for (std::size_t i = 0; i < e; ++i) {
+    if (str[i] == '.') after_point = true;
+    else if (std::isdigit(static_cast<unsigned char>(str[i]))) {
+      mantissa = mantissa * 10 + (str[i] - '0');
+      if (after_point) ++fraction_digits;
+    }
+  }
+  const int exponent = std::atoi(str.c_str() + e + 1) - fraction_digits;
+  GiNaC::numeric result = GiNaC::numeric(mantissa) * GiNaC::numeric(10).power(exponent);
+  return value < 0 ? -result : result;
 }
 
 SignedKey signed_key(const GiNaC::ex& e) {

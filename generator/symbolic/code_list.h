@@ -72,8 +72,9 @@ SignedKey signed_key(const GiNaC::ex& e);
 /// True for numbers and symbols: things printed without an operation.
 bool is_atomic(const GiNaC::ex& e);
 
-/// The exact rational equal to a finite double (doubles are dyadic rationals),
-/// so that the derivation loses no digits and prunes products with 0 and 1.
+/// The shortest decimal rational that reads back as the given finite double
+/// (0.7 -> 7/10): exact arithmetic in the derivation, so products with 0 and 1
+/// vanish and every constant is rounded to a double once, when printed.
 GiNaC::numeric exact(double value);
 
 }  // namespace mbfe::gen
