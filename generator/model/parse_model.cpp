@@ -566,21 +566,17 @@ SourceLoc mark_location(const YAML::Mark& mark) {
   return {mark.line + 1, mark.column + 1};
 }
 
-/// The first YAML document of `text`; more than one is an error.
+/// The one YAML document of `text`; a second one is an error.
 YAML::Node load_single_document(const std::string& text, const std::string& file) {
-  std::vector<YAML::Node> documents = YAML::LoadAll(text);
-  if (documents.empty() || documents.front().IsNull()) {
+  if (const auto second = find_second_document(text)) {
+    throw ModelError(file, *second, "a second YAML document starts here; expected one");
+  }
+  YAML::Node root = YAML::Load(text);
+  if (!root.IsDefined() || root.IsNull()) {
     throw ModelError(file, {1, 1},
                      "the file holds no model (expected a YAML map starting with 'model:')");
   }
-  if (documents.size() > 1) {
-    SourceLoc loc = location_of(documents[1]);
-    if (loc.line == 0) loc = {1, 1};
-    throw ModelError(
-        file, loc,
-        "the file holds " + std::to_string(documents.size()) + " YAML documents, expected one");
-  }
-  return documents.front();
+  return root;
 }
 
 /// yaml-cpp's messages start with "yaml-cpp: error at line ..."; keep the

@@ -185,4 +185,36 @@ std::optional<TextProblem> find_excess_structure(const std::string& text, int ma
   return std::nullopt;
 }
 
+std::optional<SourceLoc> find_second_document(const std::string& text) {
+  const auto is_marker = [](std::string_view row, std::string_view marker) {
+    return row.substr(0, 3) == marker &&
+           (row.size() == 3 || row[3] == ' ' || row[3] == '\t' || row[3] == '\r');
+  };
+  bool seen_content = false;  // of the first document
+  bool ended = false;         // a `...` closed the first document
+  int line = 0;
+  for (std::size_t pos = 0; pos < text.size();) {
+    ++line;
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    const std::string_view row(text.data() + pos, end - pos);
+    pos = end + 1;
+    if (is_marker(row, "---")) {
+      if (seen_content || ended) return SourceLoc{line, 1};
+      seen_content = row.find_first_not_of(" \t\r", 3) != std::string_view::npos &&
+                     row[row.find_first_not_of(" \t\r", 3)] != '#';
+      continue;
+    }
+    if (is_marker(row, "...")) {
+      ended = true;
+      continue;
+    }
+    const std::size_t first = row.find_first_not_of(" \t\r");
+    const bool content = first != std::string_view::npos && row[first] != '#';
+    if (content && ended) return SourceLoc{line, static_cast<int>(first) + 1};
+    seen_content = seen_content || content;
+  }
+  return std::nullopt;
+}
+
 }  // namespace mbfe::model

@@ -34,4 +34,11 @@ std::optional<TextProblem> find_non_text(const std::string& text);
 std::optional<TextProblem> find_excess_structure(const std::string& text, int max_depth,
                                                  long max_values);
 
+/// Returns where a second YAML document starts: a `---` line after content,
+/// or content after a `...` line. yaml-cpp's LoadAll, which could tell, loops
+/// without end allocating memory on some inputs (a document that starts with
+/// `,`; yaml-cpp issue #1040, fixed after 0.7), so the parser loads one
+/// document with Load, which is safe, and asks this scan about the rest.
+std::optional<SourceLoc> find_second_document(const std::string& text);
+
 }  // namespace mbfe::model

@@ -7,7 +7,8 @@
 // The files, by issue-6 category:
 // - truncated YAML and broken syntax: truncated_flow_map, truncated_quoted_string,
 //   truncated_mid_body, tab_indentation, undefined_alias, long_key_over_yaml_limit,
-//   two_documents, only_comments (an empty model), top_is_list, top_is_scalar
+//   two_documents, only_comments (an empty model), top_is_list, top_is_scalar,
+//   leading_comma and lone_comma (yaml-cpp 0.7's LoadAll loops on these, issue #1040)
 // - wrong types: mass_is_map, mass_is_quoted_string, mass_is_word, mass_is_list, mass_empty,
 //   bodies_not_list, gravity_three_components, gravity_scalar, com_scalar, joint_not_map,
 //   elements_fraction, name_is_list, points_as_list, torque_value_vector,
