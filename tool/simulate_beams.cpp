@@ -7,6 +7,7 @@
 // only), or the --probe columns.
 #include <Eigen/Core>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -35,6 +36,13 @@ std::string short_sci(double v) {
   std::string mant = s.substr(0, e);
   int exp = std::stoi(s.substr(e + 1));
   return mant + "e" + std::to_string(exp);
+}
+
+/// -1.3702e5, or -3.6817e0 + 7.3542e1i for a complex one.
+std::string eigenvalue_text(std::complex<double> l) {
+  std::string s = short_sci(l.real());
+  if (l.imag() != 0.0) s += (l.imag() > 0 ? " + " : " - ") + short_sci(std::abs(l.imag())) + "i";
+  return s;
 }
 
 struct Probe {
@@ -166,13 +174,10 @@ int simulate_beams(const model::Model& model, const SimulateOptions& options) {
       msg << "diverged at t = " << result.t + result.step << " s: step " << result.step;
       if (lim.kind == runtime::StepLimit::Kind::kFinite && result.step > lim.h) {
         msg << " exceeds " << result.integrator << "'s stable limit " << lim.text() << " (fastest eigenvalue "
-            << short_sci(lim.critical.real());
-        if (lim.critical.imag() != 0.0) msg << (lim.critical.imag() > 0 ? " + " : " - ") << short_sci(std::abs(lim.critical.imag())) << "i";
-        msg << ")";
+            << eigenvalue_text(lim.critical) << ")";
       } else if (lim.kind == runtime::StepLimit::Kind::kNone) {
         msg << ": " << result.integrator << " has no stable step for this model (eigenvalue "
-            << short_sci(lim.critical.real()) << (lim.critical.imag() >= 0 ? " + " : " - ")
-            << short_sci(std::abs(lim.critical.imag())) << "i)";
+            << eigenvalue_text(lim.critical) << ")";
       } else {
         msg << " with " << result.integrator << " (stable limit " << lim.text() << "): |y| = " << result.norm
             << " exceeded the bound " << result.bound;

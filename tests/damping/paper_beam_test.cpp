@@ -1,0 +1,124 @@
+// The paper's result (Section 7, Table 1 right half, Fig. 5) reproduced on
+// models/paper_beam.yaml, against the reference numbers of
+// ../shared/docs/method-notes.md (sections 1 and 2).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "damping/beam_model.h"
+#include "damping/beam_ode.h"
+#include "damping/modal_adjustment.h"
+#include "integrators/integrator.h"
+#include "integrators/simulation_driver.h"
+#include "model/parse_model.h"
+#include "stability/step_limits.h"
+
+namespace mbfe::runtime {
+namespace {
+
+// The method-notes values are printed with 6-7 significant digits; the dense
+// 100-DOF eigen-solver is good to ~1e-10. 5e-6 relative is the printing.
+constexpr double kNotesRel = 5e-6;
+
+const model::Model& paper_model() {
+  static const model::Model m = model::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml");
+  return m;
+}
+
+const BeamModel& paper_beams() {
+  static const BeamModel b = analyse_beams(paper_model());
+  return b;
+}
+
+double max_modulus(const StateSpectrum& s) { return std::abs(s.eigenvalues.back()); }
+
+TEST(PaperBeam, AdjustmentBlockIsThePapers) {
+  const model::Adjustment& a = paper_model().beams.at(0).adjustment;
+  EXPECT_TRUE(a.present);
+  EXPECT_EQ(a.policy, model::AdjustmentPolicy::kCap);
+  EXPECT_DOUBLE_EQ(a.omega_limit, 1e5);
+  EXPECT_DOUBLE_EQ(a.margin, 0.1);
+  EXPECT_DOUBLE_EQ(a.zeta_min, 0.05);
+}
+
+TEST(PaperBeam, AdjustedSpectrumMatchesMethodNotes) {
+  const BeamModel& b = paper_beams();
+  ASSERT_EQ(b.dof, 100);
+  ASSERT_EQ(b.adjusted.eigenvalues.size(), 200u);
+  EXPECT_NEAR(max_modulus(b.adjusted), 1.370156e5, kNotesRel * 1.370156e5);
+  // Every capped mode ends at the same fastest root: -1.370156e5 (real).
+  EXPECT_EQ(b.adjusted.eigenvalues.back().imag(), 0.0);
+  const auto first = b.adjusted.eigenvalues.front();
+  EXPECT_NEAR(first.real(), -3.6817, 5e-5);
+  EXPECT_NEAR(std::abs(first.imag()), 73.5417, 5e-5);
+  const auto fe = parse_integrator("forward_euler");
+  EXPECT_NEAR(stable_step(fe, b.original.eigenvalues).h, 1.52098e-8, kNotesRel * 1.52098e-8);
+  EXPECT_NEAR(stable_step(fe, b.adjusted.eigenvalues).h, 1.45969e-5, kNotesRel * 1.45969e-5);
+  // Table 1: the floor raises modes 1..3 to 5 % and leaves mode 5 pair (4.99 %) at 5 %.
+  EXPECT_NEAR(-first.real() / std::abs(first), 0.05, 1e-12);
+}
+
+TEST(PaperBeam, LiteralEq25GivesOnly94x) {
+  const BeamPart& p = paper_beams().beams.at(0);
+  model::Adjustment a = paper_model().beams.at(0).adjustment;
+  a.policy = model::AdjustmentPolicy::kPaperEq25;
+  const StateSpectrum s = state_spectrum(adjust_modes(p.original, a).modes);
+  EXPECT_NEAR(max_modulus(s), 1.40264e6, kNotesRel * 1.40264e6);
+  EXPECT_NEAR(stable_step(parse_integrator("forward_euler"), s.eigenvalues).h, 1.42588e-6, kNotesRel * 1.42588e-6);
+}
+
+TEST(PaperBeam, KeepSlowReachesTheSameLimitAsCap) {
+  const BeamPart& p = paper_beams().beams.at(0);
+  model::Adjustment a = paper_model().beams.at(0).adjustment;
+  a.policy = model::AdjustmentPolicy::kKeepSlow;
+  const AdjustedModes keep = adjust_modes(p.original, a);
+  EXPECT_FALSE(keep.uniform);
+  const StateSpectrum s = state_spectrum(keep.modes);
+  EXPECT_NEAR(max_modulus(s), 1.370156e5, kNotesRel * 1.370156e5);
+}
+
+/// Forward Euler from rest on the original (nodal, sparse) or adjusted (modal) model.
+SimulationResult run_forward_euler(LinearSecondOrderSystem& ode, double h, double t_end) {
+  SimulationOptions opt;
+  opt.step = h;
+  opt.t_end = t_end;
+  opt.quiet = true;
+  opt.handle_sigint = false;
+  opt.max_rows = 10;
+  return run_simulation(ode, parse_integrator("forward_euler"), Eigen::VectorXd::Zero(ode.size()), opt,
+                        [](double, const Eigen::VectorXd&) {});
+}
+
+// The paper's Fig. 5a: the original beam in nodal coordinates (sparse M, K, C).
+TEST(PaperBeam, OriginalForwardEulerLimit) {
+  const BeamPart& p = paper_beams().beams.at(0);
+  NodalBeamOde ode(p.system.M, p.system.K, p.system.C, p.system.P);
+  const auto bad = run_forward_euler(ode, 1.6e-8, 2e-4);
+  EXPECT_EQ(bad.status, SimulationStatus::kDiverged);
+  const auto good = run_forward_euler(ode, 1.5e-8, 2e-4);
+  EXPECT_EQ(good.status, SimulationStatus::kCompleted);
+  EXPECT_EQ(good.steps, 13334);
+}
+
+// The paper's result: stable at 1.4e-5 to t = 1 s, unstable at 1.5e-5.
+TEST(PaperBeam, AdjustedForwardEulerLimitModal) {
+  auto ode = modal_beam_ode(paper_beams(), true);
+  const auto good = run_forward_euler(*ode, 1.4e-5, 1.0);
+  EXPECT_EQ(good.status, SimulationStatus::kCompleted);
+  EXPECT_EQ(good.steps, 71429);
+  const auto bad = run_forward_euler(*ode, 1.5e-5, 1.0);
+  EXPECT_EQ(bad.status, SimulationStatus::kDiverged);
+}
+
+TEST(PaperBeam, AdjustedForwardEulerLimitNodalLowRank) {
+  const BeamPart& p = paper_beams().beams.at(0);
+  const NodalAdjusted adj = low_rank_adjusted(p.system.M, p.basis, p.adjusted);
+  EXPECT_LT(adj.U.cols(), 25);  // only the kept low modes
+  NodalBeamOde ode(p.system.M, adj, p.system.P);
+  EXPECT_EQ(run_forward_euler(ode, 1.4e-5, 1.0).status, SimulationStatus::kCompleted);
+  EXPECT_EQ(run_forward_euler(ode, 1.5e-5, 1.0).status, SimulationStatus::kDiverged);
+}
+
+}  // namespace
+}  // namespace mbfe::runtime

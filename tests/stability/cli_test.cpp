@@ -1,0 +1,157 @@
+// `mbfe stability`, `mbfe simulate` (beams), `mbfe plot` and `mbfe modal`'s
+// adjusted block end to end: runs the built binary (MBFE_CLI).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+struct CliRun {
+  int status = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+CliRun run_cli(const std::string& args, const std::string& env = "") {
+  const std::string err_file = std::string(MBFE_BINARY_DIR) + "/cli_test_stderr.txt";
+  const std::string cmd = std::string("cd '") + MBFE_SOURCE_DIR + "' && " + env + " '" + MBFE_CLI + "' " + args +
+                          " 2>'" + err_file + "'";
+  CliRun r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int st = pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  std::ifstream e(err_file);
+  r.err.assign(std::istreambuf_iterator<char>(e), std::istreambuf_iterator<char>());
+  return r;
+}
+
+std::string tmp(const std::string& name) { return std::string(MBFE_BINARY_DIR) + "/cli_test_" + name; }
+
+// method-notes prints 6 significant digits.
+constexpr double kNotesRel = 5e-6;
+
+TEST(CmdStability, JsonContract) {
+  const CliRun r = run_cli("stability models/paper_beam.yaml --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j.at("original").at("forward_euler").get<double>(), 1.52098e-8, kNotesRel * 1.52098e-8);
+  EXPECT_NEAR(j.at("adjusted").at("forward_euler").get<double>(), 1.45969e-5, kNotesRel * 1.45969e-5);
+  // RK4's real-axis limit 2.785293563 / 1.370156e5.
+  EXPECT_NEAR(j.at("adjusted").at("rk4").get<double>(), 2.785293563 / 1.370156e5, 1e-5 * 2.0328e-5);
+  EXPECT_EQ(j.at("adjusted").at("explicit_midpoint"), "none");
+  for (const char* a : {"backward_euler", "trapezoid", "generalized_alpha", "bdf2"}) {
+    EXPECT_EQ(j.at("original").at(a), "unconditional") << a;
+    EXPECT_EQ(j.at("adjusted").at(a), "unconditional") << a;
+  }
+}
+
+TEST(CmdStability, TextAndHelp) {
+  const CliRun r = run_cli("stability models/paper_beam.yaml");
+  ASSERT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("forward_euler       1.521e-08 s       1.4597e-05 s      (960x)"), std::string::npos) << r.out;
+  EXPECT_EQ(run_cli("stability --help").status, 0);
+  EXPECT_EQ(run_cli("stability models/double_pendulum.yaml").status, 2);
+  EXPECT_EQ(run_cli("stability").status, 2);
+}
+
+TEST(CmdSimulateBeam, PaperResultFromTheCommandLine) {
+  const std::string ok = tmp("ok.csv"), bad = tmp("bad.csv");
+  const CliRun good = run_cli("simulate models/paper_beam.yaml --integrator forward_euler --step 1.4e-5 --t-end 1 "
+                              "--probe beam1@0.5 --quiet --out '" + ok + "'");
+  ASSERT_EQ(good.status, 0) << good.err;
+  const CliRun div = run_cli("simulate models/paper_beam.yaml --integrator forward_euler --step 1.5e-5 --t-end 1 "
+                             "--probe beam1@0.5 --quiet --out '" + bad + "'");
+  EXPECT_EQ(div.status, 3);
+  EXPECT_NE(div.err.find("step 1.5e-05 exceeds forward_euler's stable limit 1.4597e-05 (fastest eigenvalue "
+                         "-1.3702e5)"),
+            std::string::npos)
+      << div.err;
+  // Everything up to the divergence stays in the file: header + rows, finite.
+  std::ifstream in(bad);
+  std::string line, last;
+  int lines = 0;
+  while (std::getline(in, line)) {
+    ++lines;
+    last = line;
+  }
+  EXPECT_GT(lines, 10);
+  EXPECT_EQ(last.find("nan"), std::string::npos);
+  EXPECT_EQ(last.find("inf"), std::string::npos);
+  // The stable run ends at t = 1 near the static deflection (2.134e-2 m down,
+  // method-notes section 5; the 5 % floor has damped mode 1 to ~1e-3 of it).
+  std::ifstream okin(ok);
+  while (std::getline(okin, line)) last = line;
+  const double w = std::stod(last.substr(last.find(',') + 1));
+  EXPECT_EQ(last.substr(0, 2), "1,");
+  EXPECT_NEAR(w, -2.134e-2, 1e-3);
+}
+
+TEST(CmdSimulateBeam, OriginalAtThePapersFig5aSteps) {
+  EXPECT_EQ(run_cli("simulate models/paper_beam.yaml --adjust off --integrator forward_euler --step 1.6e-8 "
+                    "--t-end 2e-4 --quiet --out '" + tmp("o1.csv") + "'")
+                .status,
+            3);
+  EXPECT_EQ(run_cli("simulate models/paper_beam.yaml --adjust off --integrator forward_euler --step 1.5e-8 "
+                    "--t-end 2e-4 --quiet --out '" + tmp("o2.csv") + "'")
+                .status,
+            0);
+}
+
+TEST(CmdSimulateBeam, ColumnsAreTheBeamCoordinates) {
+  const CliRun r = run_cli("simulate models/paper_beam.yaml --integrator generalized_alpha --step 1e-3 --t-end 0.01 "
+                           "--quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string header = r.out.substr(0, r.out.find('\n'));
+  // Pinned ends: node 0 keeps only w', node 50 only w'.
+  EXPECT_EQ(header.substr(0, 28), "t,beam1_dw0,beam1_w1,beam1_d");
+  EXPECT_NE(header.find(",beam1_dw50"), std::string::npos);
+  EXPECT_EQ(run_cli("simulate models/paper_beam.yaml --probe beam9@0.5 --quiet").status, 2);
+  EXPECT_EQ(run_cli("simulate models/paper_beam.yaml --integrator nope --quiet").status, 2);
+}
+
+TEST(CmdPlot, DrawsOrExplains) {
+  const std::string csv = tmp("plot.csv"), png = tmp("plot.png");
+  ASSERT_EQ(run_cli("simulate models/paper_beam.yaml --integrator rk4 --step 2e-5 --t-end 0.1 --probe beam1@0.5 "
+                    "--quiet --out '" + csv + "'")
+                .status,
+            0);
+  std::remove(png.c_str());
+  // Without gnuplot on PATH: a clear message and exit 2, never a crash.
+  const CliRun missing = run_cli("plot '" + csv + "' -o '" + png + "'", "PATH=/nonexistent");
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.err.find("gnuplot was not found"), std::string::npos) << missing.err;
+  EXPECT_EQ(run_cli("plot '" + csv + "' -o '" + png + "' --columns nope").status, 2);
+  if (system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
+  const CliRun r = run_cli("plot '" + csv + "' -o '" + png + "'");
+  EXPECT_EQ(r.status, 0) << r.err;
+  std::ifstream f(png, std::ios::binary);
+  char magic[4] = {};
+  f.read(magic, 4);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+}
+
+TEST(CmdModal, AdjustedBlock) {
+  const CliRun r = run_cli("modal models/paper_beam.yaml --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& a = j.at("beams").at(0).at("adjusted");
+  EXPECT_EQ(a.at("policy"), "cap");
+  EXPECT_EQ(a.at("eigenvalues").size(), 200u);
+  EXPECT_EQ(a.at("oscillatory_pairs"), 13);
+  EXPECT_NEAR(a.at("h_max").at("forward_euler").get<double>(), 1.45969e-5, kNotesRel * 1.45969e-5);
+  EXPECT_NEAR(a.at("eigenvalues").at(0).at(0).get<double>(), -3.6817, 5e-5);
+  const CliRun text = run_cli("modal models/paper_beam.yaml");
+  EXPECT_NE(text.out.find("adjusted (Table 1, right half)"), std::string::npos);
+  EXPECT_NE(text.out.find("gain: 960x"), std::string::npos);
+}
+
+}  // namespace
