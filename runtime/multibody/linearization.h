@@ -1,0 +1,49 @@
+// The linearised, partitioned coupled system at one state: what `mbfe stability`
+// and `mbfe modal` analyse for a coupled model (issue 5).
+//
+// The partitioned system (eqs (16)-(17)) is y' = f(t, y), y = [z; z'],
+// z = [u; q_c]. Its Jacobian is
+//
+//   A = df/dy = [[0, I], [da/dz, da/dz']]
+//
+// with a(z, z') the accelerations (v closed by Newton and v' projected inside
+// every evaluation, so A is the Jacobian on the constraint manifold). The top
+// block is exact; the bottom one is formed by central differences, column by
+// column, with steps scaled to each entry (the beam part of a is linear in
+// q_c and q_c', so there the differences are exact up to round-off). The
+// eigenvalues of A (dense; the paper's platform has 394 states) go to the
+// stability advisor (stability/step_limits.h) like a beam's spectrum.
+#pragma once
+
+#include <Eigen/Core>
+#include <complex>
+#include <vector>
+
+#include "modal/state_spectrum.h"
+#include "multibody/coupled_system.h"
+
+namespace mbfe::runtime {
+
+struct LinearizationOptions {
+  /// Central-difference step of entry j: rel_step * max(1, |y_j|).
+  double rel_step = 1e-6;
+  /// Newton closure tolerance (m) while differencing: tighter than the
+  /// simulation's 1e-10, so that closure residuals do not pollute the quotients.
+  double closure_tol = 1e-13;
+};
+
+/// A = df/dy of `system` at (t, y) (size x size). The system's Newton start is
+/// left where a closure at y puts it. @throws what system.rhs throws.
+Eigen::MatrixXd rhs_jacobian(PartitionedSystem& system, double t, const Eigen::VectorXd& y,
+                             const LinearizationOptions& options = {});
+
+/// Eigenvalues of a dense real matrix, sorted and paired as StateSpectrum does.
+StateSpectrum dense_spectrum(const Eigen::MatrixXd& a);
+
+/// The spectrum of the linearised partitioned system at the consistent state
+/// y0 = system.initial_state(t, q, qd): A formed with options.closure_tol.
+StateSpectrum linearized_spectrum(const std::shared_ptr<CoupledDynamics>& dynamics, double t,
+                                  const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                  const LinearizationOptions& options = {});
+
+}  // namespace mbfe::runtime

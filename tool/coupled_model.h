@@ -1,0 +1,54 @@
+// A coupled model (bodies + beams + contacts) ready to simulate or linearise:
+// the generated solver, the beams (original or with their modal adjustment of
+// damping) and the CoupledDynamics of runtime/multibody/. Shared by
+// `mbfe simulate`, `mbfe eval`, the stability advisor, the tests and the
+// benchmark.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "damping/beam_model.h"
+#include "model/model.h"
+#include "modal/state_spectrum.h"
+#include "multibody/coupled_system.h"
+#include "simulate_options.h"
+#include "solver_cache.h"
+
+namespace mbfe::tool {
+
+struct CoupledModel {
+  LoadedSolver solver;
+  runtime::BeamModel beams;   // assembled and analysed (every mode), model order
+  bool adjusted = false;      // beams carry their adjusted C and K
+  std::shared_ptr<runtime::CoupledDynamics> dynamics;
+  Eigen::VectorXd q0, qd0;    // initial [q_b; q_c] and rates (beams at rest, undeformed)
+};
+
+/// True for a model with bodies and beams (contacts optional).
+bool is_coupled(const model::Model& model);
+
+/// Builds the coupled model. adjust: absent = adjusted when some beam has an
+/// `adjustment:` block. @throws UsageError for --adjust on without a block,
+/// std::invalid_argument for a beam the assembly rejects.
+CoupledModel load_coupled(const model::Model& model, std::optional<bool> adjust, bool quiet);
+
+/// The beam's internal force C q' + K q, original (sparse Rayleigh) or adjusted
+/// (low rank, method-notes section 3, for a uniform cap; eq (27) otherwise).
+runtime::BeamForceFn beam_force(const runtime::BeamPart& beam, bool adjusted);
+
+/// The spectrum of the linearised, partitioned system at the model's initial
+/// state (runtime/multibody/linearization.h), original or adjusted beams.
+runtime::StateSpectrum coupled_spectrum(const model::Model& model, bool adjusted, bool quiet = true);
+
+/// `mbfe simulate` of a coupled model: partitioned (eqs (16)-(17)) or augmented
+/// formulation (tool/simulate_coupled.cpp). Returns the exit status (0, 2 or 3).
+int simulate_coupled(const model::Model& model, const SimulateOptions& options, bool augmented);
+
+/// CSV names of the multipliers, stacked like the constraint rows:
+/// lambda_<contact>_1/_2 for a pin, lambda_<contact> for a slider_pin.
+std::vector<std::string> coupled_multiplier_names(const model::Model& model);
+
+}  // namespace mbfe::tool
