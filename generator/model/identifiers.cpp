@@ -33,7 +33,8 @@ constexpr std::string_view kReserved[] = {
     "throw",     "true",        "try",          "typedef",      "typeid",
     "typename",  "union",       "unsigned",     "using",        "virtual",
     "void",      "volatile",    "wchar_t",      "while",        "xor",
-    "xor_eq",    "NULL",        "assert",       "errno"};
+    "xor_eq",    "NULL",        "assert",       "errno",
+    "std"};  // a model namespace named std would hide ::std inside generated code
 // clang-format on
 
 }  // namespace

@@ -542,8 +542,9 @@ class ModelParser {
     Simulation& simulation = model_.simulation;
     simulation.loc = view.loc();
     if (const Field* integrator = view.find("integrator")) {
+      // The general `lmm:alpha=...:beta=...` form is for the command line (--integrator).
       view.choice(*integrator, {"forward_euler", "backward_euler", "explicit_midpoint", "trapezoid",
-                                "rk4", "generalized_alpha", "lmm"});
+                                "rk4", "generalized_alpha", "ab2", "bdf2"});
       simulation.integrator = integrator->value.Scalar();
     }
     if (const Field* step = view.find("step")) simulation.step = view.positive(*step);
