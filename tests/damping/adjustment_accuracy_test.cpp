@@ -1,0 +1,158 @@
+// What the modal adjustment costs in accuracy (method-notes section 5,
+// docs/accuracy-vs-cost.md), without time stepping: the exact midspan
+// deflection of the paper beam (gravity + 10 N at midspan stepped on at t = 0,
+// from rest) by modal superposition, each mode's step response in closed form,
+// for the original model and the two adjusted ones of the paper's adjustment
+// block (cap at omega_limit 1e5, margin 0.1, with and without zeta_min 0.05).
+//
+// Model error = max over a time grid on 0..1 s of |w_adjusted - w_original|,
+// divided by the peak |w_original| (method-notes: 1.4e-6 for the cap alone,
+// 3.4e-1 with the floor). The grid matters for the cap: its change is a
+// transient in the first ~0.5 ms (the capped modes' slow roots ~7e4 1/s
+// instead of the original overdamped modes' ~7e3 1/s) on top of a static
+// shift of 2.56e-6 of the static deflection (1.30e-6 of the peak). Sampled at
+// 2e-4 s or coarser only the shift is seen: 1.30e-6 of the peak, 8 % below the
+// notes' 1.4e-6 (the notes do not give their grid; this project could not
+// reproduce the second digit). Sampled every 1e-5 s: 4.97e-6.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "damping/beam_model.h"
+#include "damping/modal_adjustment.h"
+#include "fem/beam_system.h"
+#include "model/parse_model.h"
+
+namespace mbfe::runtime {
+namespace {
+
+// Method-notes prints 2 significant digits: 5 % relative covers the printing
+// (3.4e-1 is 3.35..3.45e-1) but not a different definition or grid.
+constexpr double kNotesPrint = 0.05;
+// The cap's coarse-grid error is 1.298e-6 here against the notes' 1.4e-6
+// (see above): 10 % accepts that unexplained second digit, not a factor 2 or
+// the fine-grid 4.97e-6.
+constexpr double kNotesCapDiscrepancy = 0.10;
+// The exact modal sums are deterministic to round-off (~1e-12 relative);
+// 1 % of our own figures catches any change of the model, grid or formula.
+constexpr double kOwnFigure = 0.01;
+// The static check solves K q = P with a sparse LDLT; K of the 50-element beam
+// has cond ~1e10 (grows as ne^4), so that solve is good to ~1e-8 relative
+// (3.4e-9 measured), while the modal sum is exact.
+constexpr double kStaticSolveRel = 1e-7;
+// The peak (4.21e-2) and static (2.134e-2) deflections are printed to 3-4
+// digits: half a unit in the last printed digit.
+constexpr double kPeakPrint = 0.005e-2;
+constexpr double kStaticPrint = 0.0005e-2;
+
+struct Exact {
+  std::vector<ModalDynamics> modes;
+  Eigen::VectorXd p, g;  // modal load, midspan modal weights
+  double eta(int j, double t) const {
+    const double k = modes[j].k, c = modes[j].c, st = p[j] / k;
+    const auto r = modal_roots(c, k);
+    if (r.first.imag() != 0.0) {
+      const double s = -r.first.real(), wd = r.first.imag();
+      return st * (1.0 - std::exp(-s * t) * (std::cos(wd * t) + s / wd * std::sin(wd * t)));
+    }
+    const double a = std::abs(r.first.real()), b = std::abs(r.second.real());
+    if (b - a <= 1e-7 * b) return st * (1.0 - (1.0 + a * t) * std::exp(-a * t));
+    return st * (1.0 - (b * std::exp(-a * t) - a * std::exp(-b * t)) / (b - a));
+  }
+  double w(double t) const {
+    double s = 0.0;
+    for (int j = 0; j < static_cast<int>(modes.size()); ++j) s += g[j] * eta(j, t);
+    return s;
+  }
+  double w_static() const {
+    double s = 0.0;
+    for (int j = 0; j < static_cast<int>(modes.size()); ++j) s += g[j] * p[j] / modes[j].k;
+    return s;
+  }
+};
+
+struct Models {
+  Exact original, cap, cap_floor;
+  double static_from_solve = 0.0;  // midspan of K^-1 P, independent of the modes
+};
+
+const Models& models() {
+  static const Models m = [] {
+    const model::Model file = model::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml");
+    const BeamModel beams = analyse_beams(file);
+    const BeamPart& b = beams.beams.at(0);
+    const BeamPointWeights pw = point_weights(b.system, 0.5 * b.system.length);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(b.basis.phi.cols());
+    for (int i = 0; i < 4; ++i)
+      if (pw.free_index[i] >= 0) g += pw.w[i] * b.basis.phi.row(pw.free_index[i]).transpose();
+    const Eigen::VectorXd p = b.basis.phi.transpose() * b.system.P;
+    model::Adjustment a = file.beams.at(0).adjustment;  // cap, 1e5, 0.1, zeta_min 0.05
+    Models out;
+    out.original = {b.original, p, g};
+    out.cap_floor = {adjust_modes(b.original, a).modes, p, g};
+    a.zeta_min = 0.0;
+    out.cap = {adjust_modes(b.original, a).modes, p, g};
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> kf(b.system.K);
+    out.static_from_solve = deflection_at(b.system, kf.solve(b.system.P), 0.5 * b.system.length);
+    return out;
+  }();
+  return m;
+}
+
+double peak(const Exact& e, double dt) {
+  double pk = 0.0;
+  for (int i = 0, n = static_cast<int>(std::lround(1.0 / dt)); i <= n; ++i) pk = std::max(pk, std::abs(e.w(i * dt)));
+  return pk;
+}
+
+double model_error(const Exact& adjusted, const Exact& original, double dt) {
+  double err = 0.0;
+  for (int i = 0, n = static_cast<int>(std::lround(1.0 / dt)); i <= n; ++i)
+    err = std::max(err, std::abs(adjusted.w(i * dt) - original.w(i * dt)));
+  return err;
+}
+
+TEST(AdjustmentAccuracy, ReferenceMatchesMethodNotes) {
+  const Models& m = models();
+  // The exact response starts at rest and settles on the static solution K^-1 P.
+  EXPECT_NEAR(m.original.w(0.0), 0.0, 1e-15);
+  EXPECT_NEAR(m.original.w_static(), m.static_from_solve, kStaticSolveRel * std::abs(m.static_from_solve));
+  EXPECT_NEAR(std::abs(m.static_from_solve), 2.134e-2, kStaticPrint);
+  EXPECT_NEAR(peak(m.original, 1e-5), 4.21e-2, kPeakPrint);
+  EXPECT_LT(m.original.w_static(), 0.0) << "the load points down (-y)";
+}
+
+TEST(AdjustmentAccuracy, CapAloneIsAlmostFree) {
+  const Models& m = models();
+  const double pk = peak(m.original, 1e-5);
+  // Coarse grid (1e-3 s): the static shift. Ours, and the notes' 1.4e-6.
+  const double coarse = model_error(m.cap, m.original, 1e-3) / pk;
+  EXPECT_NEAR(coarse, 1.298e-6, kOwnFigure * 1.298e-6);
+  EXPECT_NEAR(coarse, 1.4e-6, kNotesCapDiscrepancy * 1.4e-6);
+  // The static shift behind it (method-notes section 2: "3e-6", one digit:
+  // anything in [2.5e-6, 3.5e-6) prints as 3e-6).
+  const double shift = std::abs(m.cap.w_static() - m.original.w_static()) / std::abs(m.original.w_static());
+  EXPECT_GE(shift, 2.5e-6);
+  EXPECT_LT(shift, 3.5e-6);
+  // Fine grid (1e-5 s): the transient of the first half millisecond, 4.97e-6
+  // of the peak: still below 1e-5 (the cap is almost free), and 5e4 times
+  // smaller than the floor's change below.
+  const double fine = model_error(m.cap, m.original, 1e-5) / pk;
+  EXPECT_NEAR(fine, 4.97e-6, kOwnFigure * 4.97e-6);
+  EXPECT_LT(fine, 1e-5);
+}
+
+TEST(AdjustmentAccuracy, DampingFloorChangesTheResponse) {
+  const Models& m = models();
+  const double pk = peak(m.original, 1e-5);
+  // 0.3383 (1e-3 s grid) and 0.3385 (1e-5 s): the grid hardly matters here.
+  EXPECT_NEAR(model_error(m.cap_floor, m.original, 1e-3) / pk, 3.4e-1, kNotesPrint * 3.4e-1);
+  EXPECT_NEAR(model_error(m.cap_floor, m.original, 1e-5) / pk, 3.385e-1, kOwnFigure * 3.385e-1);
+  // Not a static effect: both settle on the same deflection within the cap's shift.
+  EXPECT_NEAR(m.cap_floor.w_static(), m.cap.w_static(), 1e-12 * std::abs(m.cap.w_static()));
+}
+
+}  // namespace
+}  // namespace mbfe::runtime
