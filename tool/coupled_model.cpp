@@ -20,11 +20,11 @@ runtime::BeamForceFn beam_force(const runtime::BeamPart& beam, bool adjusted) {
   const int n = static_cast<int>(sys.M.rows());
   const int m = static_cast<int>(na->U.cols());
   // Scratch captured by value: one callback per CoupledDynamics, one thread.
-  Eigen::VectorXd mx(n), ux(m), y(n);
-  return [na, M, mx, ux, y](const Eigen::Ref<const Eigen::VectorXd>& q,
-                            const Eigen::Ref<const Eigen::VectorXd>& qd,
-                            Eigen::Ref<Eigen::VectorXd> f) mutable {
-    Eigen::VectorXd x = qd;
+  Eigen::VectorXd x(n), mx(n), ux(m), y(n);
+  return [na, M, x, mx, ux, y](const Eigen::Ref<const Eigen::VectorXd>& q,
+                               const Eigen::Ref<const Eigen::VectorXd>& qd,
+                               Eigen::Ref<Eigen::VectorXd> f) mutable {
+    x = qd;
     mx.noalias() = *M * x;
     ux.noalias() = na->U.transpose() * x;
     na->C.apply(x, mx, ux, na->U, y);
