@@ -1,0 +1,165 @@
+// The paper's platform (models/paper_platform.yaml: 4 rigid coordinates, two
+// beams of 100 DOFs, a pin and a slider-pin), adjusted damping, forward Euler
+// at 0.95 x the limit of the linearised partitioned system, 1 s simulated.
+// Target (issue 5): under 0.5 s wall on a 2-core machine.
+//
+//   build/bench/paper_platform_bench         (or build/bin/paper_platform_bench)
+//
+// BM_PaperPlatform1s         the whole run (partitioned formulation; rows to an
+//                            empty sink every 100 steps)
+// BM_RhsPartitioned          one right-hand side (= one forward-Euler step)
+// BM_PartMultibody           its multibody share: the generated M, F, Q kernel
+// BM_PartBeams               its beam share: C q' + K q (adjusted, low rank)
+//                            and the M_c solves for both beams
+// BM_PartConstraints         its constraint share: Phi, J_b, J_c, gamma of the
+//                            contacts (generated kernels + element lookup)
+// What the right-hand side costs beyond the three parts is the partitioning
+// itself (Newton closure of v, W = M_c^-1 J_c^T, H, the small dense solves of
+// eqs (16)-(17)); docs/performance-coupled.md books it under constraints.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+#include "coupled_model.h"
+#include "integrators/integrator.h"
+#include "integrators/simulation_driver.h"
+#include "model/parse_model.h"
+#include "multibody/linearization.h"
+#include "stability/step_limits.h"
+
+namespace {
+
+using namespace mbfe;
+
+struct Setup {
+  model::Model model;
+  tool::CoupledModel cm;
+  double h = 0.0;
+};
+
+Setup& setup() {
+  static Setup* s = [] {
+    auto* out = new Setup;
+    out->model = model::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_platform.yaml");
+    out->cm = tool::load_coupled(out->model, true, true);
+    const auto spectrum = runtime::linearized_spectrum(out->cm.dynamics, 0.0, out->cm.q0, out->cm.qd0);
+    out->h = 0.95 * runtime::stable_step(runtime::parse_integrator("forward_euler"), spectrum.eigenvalues).h;
+    return out;
+  }();
+  return *s;
+}
+
+void BM_PaperPlatform1s(benchmark::State& state) {
+  Setup& s = setup();
+  runtime::SimulationOptions opt;
+  opt.step = s.h;
+  opt.t_end = 1.0;
+  opt.every = 100;
+  opt.quiet = true;
+  opt.handle_sigint = false;
+  opt.divergence_factor = 1e4;
+  const auto fe = runtime::parse_integrator("forward_euler");
+  double sink = 0.0;
+  std::int64_t steps = 0;
+  for (auto _ : state) {
+    runtime::PartitionedSystem sys(s.cm.dynamics);
+    const Eigen::VectorXd y0 = sys.initial_state(0.0, s.cm.q0, s.cm.qd0);
+    const auto r = runtime::run_simulation(sys, fe, y0, opt, [&](double, const Eigen::VectorXd& y) { sink += y[0]; });
+    if (r.status != runtime::SimulationStatus::kCompleted) state.SkipWithError(r.message.c_str());
+    steps = r.steps;
+  }
+  benchmark::DoNotOptimize(sink);
+  state.counters["h"] = s.h;
+  state.counters["steps"] = static_cast<double>(steps);
+  state.counters["us/step"] = benchmark::Counter(static_cast<double>(steps) * 1e-6,
+                                                 benchmark::Counter::kIsIterationInvariantRate |
+                                                     benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_PaperPlatform1s)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+// A state a few milliseconds into the run, so that beams are deformed and moving.
+struct MidState {
+  std::unique_ptr<runtime::PartitionedSystem> sys;
+  Eigen::VectorXd y, q, qd;
+};
+
+MidState& mid() {
+  static MidState* m = [] {
+    Setup& s = setup();
+    auto* out = new MidState;
+    out->sys = std::make_unique<runtime::PartitionedSystem>(s.cm.dynamics);
+    out->y = out->sys->initial_state(0.0, s.cm.q0, s.cm.qd0);
+    Eigen::VectorXd yd(out->y.size());
+    for (int i = 0; i < 200; ++i) {
+      out->sys->rhs(i * s.h, out->y, yd);
+      out->y += s.h * yd;
+      out->sys->after_step((i + 1) * s.h, out->y);
+    }
+    out->sys->full_state(200 * s.h, out->y, out->q, out->qd);
+    return out;
+  }();
+  return *m;
+}
+
+void BM_RhsPartitioned(benchmark::State& state) {
+  MidState& m = mid();
+  Eigen::VectorXd yd(m.y.size());
+  for (auto _ : state) {
+    m.sys->rhs(0.01, m.y, yd);
+    benchmark::DoNotOptimize(yd.data());
+  }
+}
+BENCHMARK(BM_RhsPartitioned)->Unit(benchmark::kMicrosecond);
+
+void BM_PartMultibody(benchmark::State& state) {
+  Setup& s = setup();
+  MidState& m = mid();
+  const mbfe_model_v1& model = *s.cm.solver.model;
+  const int nb = model.num_coordinates;
+  std::vector<double> M(nb * nb), F(nb), Q(nb);
+  for (auto _ : state) {
+    model.dynamics(m.q.data(), m.qd.data(), 0.01, M.data(), F.data(), Q.data());
+    benchmark::DoNotOptimize(M.data());
+  }
+}
+BENCHMARK(BM_PartMultibody)->Unit(benchmark::kMicrosecond);
+
+void BM_PartBeams(benchmark::State& state) {
+  Setup& s = setup();
+  MidState& m = mid();
+  const auto& beams = s.cm.dynamics->beams();
+  std::vector<std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>> fac;
+  for (const auto& b : beams) fac.push_back(std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(b.M));
+  const int nb = s.cm.dynamics->nb();
+  Eigen::VectorXd f, a;
+  for (auto _ : state) {
+    int off = nb;
+    for (std::size_t k = 0; k < beams.size(); ++k) {
+      const int n = beams[k].mesh.num_free;
+      f.resize(n);
+      beams[k].force(m.q.segment(off, n), m.qd.segment(off, n), f);
+      f = beams[k].P - f;
+      a = fac[k]->solve(f);
+      benchmark::DoNotOptimize(a.data());
+      off += n;
+    }
+  }
+}
+BENCHMARK(BM_PartBeams)->Unit(benchmark::kMicrosecond);
+
+void BM_PartConstraints(benchmark::State& state) {
+  Setup& s = setup();
+  MidState& m = mid();
+  const auto& cc = s.cm.dynamics->constraints();
+  const int nb = s.cm.dynamics->nb();
+  runtime::ConstraintValues cv;
+  for (auto _ : state) {
+    cc.evaluate(0.01, m.q.data(), m.q.data() + nb, m.qd.data(), m.qd.data() + nb, cv);
+    benchmark::DoNotOptimize(cv.phi.data());
+  }
+}
+BENCHMARK(BM_PartConstraints)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
