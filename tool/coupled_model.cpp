@@ -19,21 +19,63 @@ runtime::BeamForceFn beam_force(const runtime::BeamPart& beam, bool adjusted) {
   auto M = std::make_shared<Eigen::SparseMatrix<double>>(sys.M);
   const int n = static_cast<int>(sys.M.rows());
   const int m = static_cast<int>(na->U.cols());
-  // Scratch captured by value: one callback per CoupledDynamics, one thread.
-  Eigen::VectorXd x(n), mx(n), ux(m), y(n);
-  return [na, M, x, mx, ux, y](const Eigen::Ref<const Eigen::VectorXd>& q,
+  // C qd + K q = S_C qd + S_K q + M (s_C qd + s_K q) + U (d_C .* U^T qd + d_K .* U^T q):
+  // one sparse product with M and one pass over U each way (the fused form of
+  // NodalOperator::apply for the two operators). Scratch captured by value:
+  // one callback per CoupledDynamics, one thread.
+  Eigen::VectorXd z(n), ux(m), uv(m), r(m);
+  return [na, M, z, ux, uv, r](const Eigen::Ref<const Eigen::VectorXd>& q,
                                const Eigen::Ref<const Eigen::VectorXd>& qd,
                                Eigen::Ref<Eigen::VectorXd> f) mutable {
-    x = qd;
-    mx.noalias() = *M * x;
-    ux.noalias() = na->U.transpose() * x;
-    na->C.apply(x, mx, ux, na->U, y);
-    f = y;
-    x = q;
-    mx.noalias() = *M * x;
-    ux.noalias() = na->U.transpose() * x;
-    na->K.apply(x, mx, ux, na->U, y);
-    f += y;
+    const runtime::NodalOperator& C = na->C;
+    const runtime::NodalOperator& K = na->K;
+    z = C.s * qd + K.s * q;
+    f.noalias() = *M * z;
+    if (C.S.size() > 0) f.noalias() += C.S * qd;
+    if (K.S.size() > 0) f.noalias() += K.S * q;
+    if (na->U.cols() > 0) {
+      r.setZero();
+      if (C.d.size() > 0) {
+        uv.noalias() = na->U.transpose() * qd;
+        r += C.d.cwiseProduct(uv);
+      }
+      if (K.d.size() > 0) {
+        ux.noalias() = na->U.transpose() * q;
+        r += K.d.cwiseProduct(ux);
+      }
+      f.noalias() += na->U * r;
+    }
+  };
+}
+
+runtime::BeamForceFn beam_acceleration(const runtime::BeamPart& beam, bool adjusted) {
+  const runtime::BeamSystem& sys = beam.system;
+  if (!adjusted || !beam.has_adjustment || !beam.adjusted.uniform) return {};
+  auto na = std::make_shared<runtime::NodalAdjusted>(runtime::low_rank_adjusted(sys.M, beam.basis, beam.adjusted));
+  if (na->C.S.size() > 0 || na->K.S.size() > 0) return {};
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(sys.M);
+  if (ldlt.info() != Eigen::Success) return {};
+  const Eigen::VectorXd minv_p = ldlt.solve(sys.P);
+  const int m = static_cast<int>(na->U.cols());
+  Eigen::VectorXd ux(m), uv(m), r(m);
+  return [na, minv_p, ux, uv, r](const Eigen::Ref<const Eigen::VectorXd>& q,
+                                 const Eigen::Ref<const Eigen::VectorXd>& qd,
+                                 Eigen::Ref<Eigen::VectorXd> a) mutable {
+    const runtime::NodalOperator& C = na->C;
+    const runtime::NodalOperator& K = na->K;
+    a = minv_p - C.s * qd - K.s * q;
+    if (na->U.cols() > 0) {
+      r.setZero();
+      if (C.d.size() > 0) {
+        uv.noalias() = na->U.transpose() * qd;
+        r += C.d.cwiseProduct(uv);
+      }
+      if (K.d.size() > 0) {
+        ux.noalias() = na->U.transpose() * q;
+        r += K.d.cwiseProduct(ux);
+      }
+      a.noalias() -= na->phi * r;
+    }
   };
 }
 
@@ -46,8 +88,10 @@ CoupledModel load_coupled(const model::Model& model, std::optional<bool> adjust,
                      "' has an `adjustment:` block (e.g. adjustment: {omega_limit: 1.0e5, margin: 0.1})");
   out.solver = load_solver(model, quiet);
   std::vector<runtime::CoupledBeam> beams;
-  for (const runtime::BeamPart& b : out.beams.beams)
+  for (const runtime::BeamPart& b : out.beams.beams) {
     beams.push_back(runtime::coupled_beam(b.system, beam_force(b, out.adjusted)));
+    beams.back().acceleration = beam_acceleration(b, out.adjusted);
+  }
   out.dynamics = std::make_shared<runtime::CoupledDynamics>(*out.solver.model, std::move(beams),
                                                             runtime::body_inertias(model));
   const int nb = static_cast<int>(model.bodies.size());

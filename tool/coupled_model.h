@@ -39,6 +39,11 @@ CoupledModel load_coupled(const model::Model& model, std::optional<bool> adjust,
 /// (low rank, method-notes section 3, for a uniform cap; eq (27) otherwise).
 runtime::BeamForceFn beam_force(const runtime::BeamPart& beam, bool adjusted);
 
+/// The beam's free acceleration M^-1 (P - C q' - K q) without a solve, for the
+/// low-rank adjusted beam (M^-1 U = Phi_L: a = M^-1 P - (s_C q' + s_K q) -
+/// Phi_L (d_C .* U^T q' + d_K .* U^T q)); empty for the others.
+runtime::BeamForceFn beam_acceleration(const runtime::BeamPart& beam, bool adjusted);
+
 /// The spectrum of the linearised, partitioned system at the model's initial
 /// state (runtime/multibody/linearization.h), original or adjusted beams.
 runtime::StateSpectrum coupled_spectrum(const model::Model& model, bool adjusted, bool quiet = true);

@@ -64,7 +64,7 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
   for (int i = 0; i < nu_; ++i) q_(part_.independent[i]) = y(i);
   for (int i = 0; i < m; ++i) q_(part_.dependent[i]) = v_guess_(i);
   q_.tail(nc) = y.segment(nu_, nc);
-  ConstraintValues cv;
+  ConstraintValues& cv = cv_close_;
   jv_.resize(m, m);
   bool stalled = false;
   int it = 0;
@@ -74,7 +74,8 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
     const double phi = dyn_->phi_max(cv);
     if (phi <= kPhiRoundoff || stalled || it >= opt_.max_newton) break;
     jv_lu_.compute(jv_);
-    const double rel = sigma_min(jv_) / constraint_scale(cv);
+    const double rel =
+        clearly_regular(jv_, jv_lu_.rcond(), cv) ? 1.0 : sigma_min(jv_) / constraint_scale(cv);
     if (!(rel >= 1e-13)) {
       // choose_partition names the contact when J_b itself is singular.
       choose_partition(cc, cv, t);
@@ -135,9 +136,13 @@ void PartitionedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd&
 void PartitionedSystem::after_step(double t, Eigen::VectorXd& y) {
   close(t, y);
   if (dyn_->m() == 0) return;
-  ConstraintValues cv;
+  ConstraintValues& cv = cv_after_;
   dyn_->constraints().evaluate(t, q_.data(), q_.data() + dyn_->nb(), nullptr, nullptr, cv);
   const double current = sigma_min(jv_);
+  // No partition can do 1 / repartition_ratio times better than this one when
+  // sigma_min(J_v) already reaches that fraction of ||J_b||_F >= sigma_max(J_b)
+  // >= the best partition's sigma_min: skip the search.
+  if (current >= opt_.repartition_ratio * cv.jb.norm()) return;
   double best = 0.0;
   const Partition p = choose_partition(dyn_->constraints(), cv, t, &best);
   if (current < opt_.repartition_ratio * best && p.dependent != part_.dependent) {

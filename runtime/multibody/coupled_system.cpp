@@ -96,6 +96,15 @@ double constraint_scale(const ConstraintValues& cv) {
   return std::max(scale, 1e-300);
 }
 
+bool clearly_regular(const Eigen::MatrixXd& jv, double lu_rcond, const ConstraintValues& cv) {
+  if (jv.size() == 0) return true;
+  double big = cv.jb.size() > 0 ? cv.jb.cwiseAbs().maxCoeff() : 0.0;
+  if (cv.je.size() > 0) big = std::max(big, cv.je.cwiseAbs().maxCoeff());
+  // sigma_min(J_v) >~ rcond ||J_v|| / m >= 1e-8 * 1e-3 big / m, while
+  // constraint_scale <= sqrt(rows * cols) big: a margin of ~1e1..1e2 over 1e-13.
+  return lu_rcond >= 1e-8 && jv.cwiseAbs().maxCoeff() >= 1e-3 * big;
+}
+
 double sigma_min(const Eigen::MatrixXd& a) {
   if (a.size() == 0) return 1.0;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(a);
@@ -201,23 +210,37 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
   for (std::size_t k = 0; k < beams_.size(); ++k) {
     const int off = nb_ + cc_.beam_offset(static_cast<int>(k));
     const int nk = beams_[k].mesh.num_free;
+    if (beams_[k].acceleration) {
+      beams_[k].acceleration(q.segment(off, nk), qd.segment(off, nk), ac0_.segment(off - nb_, nk));
+      continue;
+    }
     Eigen::Ref<Eigen::VectorXd> rck = rc_.segment(off - nb_, nk);
     beams_[k].force(q.segment(off, nk), qd.segment(off, nk), rck);
     rck = beams_[k].P - rck;
     ac0_.segment(off - nb_, nk) = mc_factor_[k]->solve(rck);
   }
-  // W = M_c^-1 J_c^T column by column (each row of J_c lives on one beam).
+  // W = M_c^-1 J_c^T column by column (each row of J_c lives on one beam, on
+  // at most 4 of its DOFs): a combination of the cached columns M_c^-1 e_k.
   const int m = cc_.num_rows();
   w_.setZero();
+  if (minv_col_.size() != beams_.size()) minv_col_.assign(beams_.size(), {});
   for (int r = 0; r < m; ++r) {
     const int beam = model_.contacts[cc_.contact_of_row(r)].beam;
     const int off = cc_.beam_offset(beam);
     const int nk = beams_[beam].mesh.num_free;
-    tmp_.setZero(nk);
+    auto& cols = minv_col_[beam];
+    if (static_cast<int>(cols.size()) != nk) cols.assign(nk, Eigen::VectorXd());
     for (int j = 0; j < 4; ++j) {
-      if (cv_.jcol(r, j) >= 0) tmp_(cv_.jcol(r, j) - off) += cv_.je(r, j);
+      const int c = cv_.jcol(r, j);
+      if (c < 0 || cv_.je(r, j) == 0.0) continue;
+      Eigen::VectorXd& col = cols[c - off];
+      if (col.size() == 0) {
+        tmp_.setZero(nk);
+        tmp_(c - off) = 1.0;
+        col = mc_factor_[beam]->solve(tmp_);
+      }
+      w_.col(r).segment(off, nk) += cv_.je(r, j) * col;
     }
-    w_.col(r).segment(off, nk) = mc_factor_[beam]->solve(tmp_);
   }
   for (int i = 0; i < m; ++i) {
     for (int j = 0; j < m; ++j) {
@@ -272,7 +295,7 @@ void CoupledDynamics::solve_partitioned(double t, const Partition& p, Eigen::Vec
   for (int i = 0; i < m; ++i) jv.col(i) = cv_.jb.col(p.dependent[i]);
   for (int i = 0; i < nu; ++i) ju.col(i) = cv_.jb.col(p.independent[i]);
   Eigen::FullPivLU<Eigen::MatrixXd> jv_lu(jv);
-  if (m > 0) {
+  if (m > 0 && !clearly_regular(jv, jv_lu.rcond(), cv_)) {
     const double rel = sigma_min(jv) / constraint_scale(cv_);
     if (!(rel >= kSingularRcond)) {
       throw_singular_constraints(cc_, cv_.jb, t, rel, "J_v of the partition");

@@ -56,6 +56,11 @@ struct CoupledBeam {
   Eigen::SparseMatrix<double> M;  // kg, free DOFs, symmetric positive definite
   Eigen::VectorXd P;              // N, constant load vector (own weight, point loads)
   BeamForceFn force;              // internal force C qd + K q
+  /// Optional: the free acceleration a = M^-1 (P - C qd - K q) written into
+  /// the third argument, for operators that give it without a solve with M
+  /// (the low-rank adjusted beam: M^-1 U = Phi_L). Empty: force, then a
+  /// sparse M solve. Must agree with M, P and force.
+  BeamForceFn acceleration;
 };
 
 /// Mesh of an assembled beam (uniform elements).
@@ -88,6 +93,13 @@ double constraint_scale(const ConstraintValues& cv);
 
 /// Smallest singular value of a matrix (1 for an empty one).
 double sigma_min(const Eigen::MatrixXd& a);
+
+/// A cheap sufficient test that the square J_v (LU-factored as `lu`) passes the
+/// singularity test sigma_min(J_v) >= 1e-13 constraint_scale(cv) with a wide
+/// margin: the LU's condition estimate is above 1e-8 and J_v is not tiny
+/// against the largest Jacobian entry. When it returns false the caller runs
+/// the exact (SVD) test; it only saves the SVDs on the common, healthy path.
+bool clearly_regular(const Eigen::MatrixXd& jv, double lu_rcond, const ConstraintValues& cv);
 
 /// Contact forces and constraint residuals at one state.
 struct ContactReport {
@@ -146,6 +158,9 @@ class CoupledDynamics {
   Eigen::VectorXd fb_, qb_force_, rb_, rc_, ac0_, gc_, tmp_;
   Eigen::MatrixXd w_, h_;
   ConstraintValues cv_;
+  // M_c^-1 e_k of the beam DOFs that contacts have touched, per beam
+  // (computed on first use: a slider visits a few elements, a pin one).
+  std::vector<std::vector<Eigen::VectorXd>> minv_col_;
 };
 
 /// Common face of the two formulations.
@@ -218,6 +233,7 @@ class PartitionedSystem : public CoupledSystem {
   Eigen::VectorXd q_, qd_, qdd_, lambda_, rhs_v_;
   Eigen::MatrixXd jv_;
   Eigen::PartialPivLU<Eigen::MatrixXd> jv_lu_;
+  ConstraintValues cv_close_, cv_after_;  // workspace of close() and after_step()
 };
 
 /// The augmented (multiplier) formulation. y = [q_b; q_c; q_b'; q_c'].

@@ -6,7 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <Eigen/SparseCholesky>
 #include <cstdio>
+#include <fstream>
+#include <random>
+#include <sstream>
 #include <string>
 
 #include "coupled/cli_run.h"
@@ -168,6 +172,81 @@ TEST(CoupledSimulation, CliWritesContactColumnsAndExitsThreeOnDivergence) {
   // Formulation flag.
   EXPECT_EQ(run_cli("simulate models/paper_platform.yaml --formulation lagrange --quiet").status, 2);
   EXPECT_EQ(run_cli("simulate models/double_pendulum.yaml --formulation augmented --quiet").status, 2);
+}
+
+}  // namespace
+}  // namespace mbfe::coupled_test
+
+namespace mbfe::coupled_test {
+namespace {
+
+// The low-rank adjusted beam's acceleration without a solve (M^-1 U = Phi_L)
+// equals M^-1 (P - C q' - K q) from the force callback and a sparse LDLT
+// solve. Both are exact identities in exact arithmetic; the difference is
+// rounding in sums of terms up to |K q| / |M| ~ 1e12 |q|, so it is judged
+// relative to the largest term (1e-9 leaves ~3 orders over double rounding).
+constexpr double kAccelerationRelTol = 1e-9;
+
+TEST(CoupledSimulation, LowRankBeamAccelerationMatchesForceAndSolve) {
+  const model::Model model = model::load_model_file(model_path("paper_platform.yaml"));
+  const runtime::BeamModel beams = runtime::analyse_beams(model);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const runtime::BeamPart& b : beams.beams) {
+    const auto accel = tool::beam_acceleration(b, true);
+    ASSERT_TRUE(static_cast<bool>(accel));
+    const auto force = tool::beam_force(b, true);
+    const int n = static_cast<int>(b.system.M.rows());
+    Eigen::VectorXd q(n), qd(n), f(n), a(n);
+    for (int i = 0; i < n; ++i) {
+      q[i] = 1e-3 * u(rng);
+      qd[i] = 1e-1 * u(rng);
+    }
+    accel(q, qd, a);
+    force(q, qd, f);
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(b.system.M);
+    const Eigen::VectorXd ref = ldlt.solve(b.system.P - f);
+    EXPECT_LT((a - ref).cwiseAbs().maxCoeff(), kAccelerationRelTol * ref.cwiseAbs().maxCoeff()) << b.system.name;
+  }
+  // Beams without an adjustment (or --adjust off) take the force + solve path.
+  EXPECT_FALSE(static_cast<bool>(tool::beam_acceleration(beams.beams[0], false)));
+}
+
+}  // namespace
+}  // namespace mbfe::coupled_test
+
+namespace mbfe::coupled_test {
+namespace {
+
+// A slider that runs off its beam: the double pendulum on a short beam
+// (0.6 .. 1.0 m) whose tip swings left past the beam's start. Exit 3, the
+// message names the contact, t and s; the rows up to there are in the file.
+TEST(CoupledSimulation, SliderOffTheBeamNamesContactTimeAndValue) {
+  std::ifstream in(model_path("double_pendulum_beam.yaml"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = yaml.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    yaml.replace(at, from.size(), to);
+  };
+  replace("model: double_pendulum_beam", "model: slider_off_test");
+  replace("origin: [0.0, 0.0]", "origin: [0.6, 0.0]");
+  replace("length: 1.0", "length: 0.4");
+  replace("{at: 1.0, type: pinned}", "{at: 0.4, type: pinned}");
+  const std::string dir = std::string(MBFE_BINARY_DIR);
+  const std::string path = dir + "/coupled_slider_off_test.yaml";
+  std::ofstream(path) << yaml;
+  const std::string csv = dir + "/coupled_slider_off_test.csv";
+  const CliRun r = run_cli("simulate '" + path + "' --integrator rk4 --step 1e-5 --t-end 0.5 --quiet --out '" + csv + "'");
+  EXPECT_EQ(r.status, 3) << r.out;
+  EXPECT_NE(r.out.find("failed at t = "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("contact 'tip_slider': the slider left beam 'beam1' at t = "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("s = -"), std::string::npos) << r.out;
+  const Csv c = read_csv(csv);
+  ASSERT_GT(c.rows.size(), 100u);
+  EXPECT_GT(c.rows.back()[0], 0.1);  // the run got well under way before the tip left
 }
 
 }  // namespace
