@@ -37,11 +37,14 @@ struct LinearizationOptions {
 Eigen::MatrixXd rhs_jacobian(PartitionedSystem& system, double t, const Eigen::VectorXd& y,
                              const LinearizationOptions& options = {});
 
-/// Eigenvalues of a dense real matrix, sorted and paired as StateSpectrum does.
+/// Eigenvalues of a dense real matrix, sorted and paired as StateSpectrum does;
+/// imaginary parts below 1e-10 |lambda| (rounding of repeated real eigenvalues)
+/// are set to zero.
 StateSpectrum dense_spectrum(const Eigen::MatrixXd& a);
 
 /// The spectrum of the linearised partitioned system at the consistent state
-/// y0 = system.initial_state(t, q, qd): A formed with options.closure_tol.
+/// y0 = system.initial_state(t, q, qd): A formed with options.closure_tol,
+/// balanced (rates rescaled by sqrt(max |da/dz|)) before the eigenvalues.
 StateSpectrum linearized_spectrum(const std::shared_ptr<CoupledDynamics>& dynamics, double t,
                                   const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                   const LinearizationOptions& options = {});
