@@ -48,6 +48,7 @@ PartitionedSystem::PartitionedSystem(std::shared_ptr<CoupledDynamics> dyn, Parti
 }
 
 void PartitionedSystem::set_partition(const Partition& p) {
+  closed_valid_ = false;
   part_ = p;
   nu_ = static_cast<int>(p.independent.size());
   nz_ = nu_ + dyn_->nc();
@@ -59,6 +60,11 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
                                 " entries, expected " + std::to_string(2 * nz_) +
                                 " ([u; q_c; u'; q_c'])");
   }
+  if (closed_valid_ && closed_y_.size() == y.size() && closed_y_ == y) {
+    last_iters_ = 0;  // q_, qd_, jv_ and its LU are those of this y already
+    return;
+  }
+  closed_valid_ = false;
   const int nb = dyn_->nb(), nc = dyn_->nc(), m = dyn_->m();
   const ContactConstraints& cc = dyn_->constraints();
   for (int i = 0; i < nu_; ++i) q_(part_.independent[i]) = y(i);
@@ -85,7 +91,8 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
          << "); the partition is chosen again only between steps: reduce the step";
       throw SingularConstraintError(os.str(), cc.contact_name(0), t, rel);
     }
-    const Eigen::VectorXd dv = jv_lu_.solve(cv.phi);
+    dv_ = jv_lu_.solve(cv.phi);
+    const Eigen::VectorXd& dv = dv_;
     double vmax = 0.0;
     for (int i = 0; i < m; ++i) {
       q_(part_.dependent[i]) -= dv(i);
@@ -112,18 +119,20 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
   qd_.tail(nc) = y.segment(nz_ + nu_, nc);
   if (m > 0) {
     jv_lu_.compute(jv_);
-    Eigen::VectorXd r;
-    cv.jc_times(qd_.tail(nc), r);
-    for (int i = 0; i < nu_; ++i) r += cv.jb.col(part_.independent[i]) * y(nz_ + i);
-    const Eigen::VectorXd vd = jv_lu_.solve(-r);
-    for (int i = 0; i < m; ++i) qd_(part_.dependent[i]) = vd(i);
+    cv.jc_times(qd_.tail(nc), r_);
+    for (int i = 0; i < nu_; ++i) r_ += cv.jb.col(part_.independent[i]) * y(nz_ + i);
+    r_ = -r_;
+    vd_ = jv_lu_.solve(r_);
+    for (int i = 0; i < m; ++i) qd_(part_.dependent[i]) = vd_(i);
   }
+  closed_y_ = y;
+  closed_valid_ = true;
 }
 
 void PartitionedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
-  const Eigen::VectorXd v_start = v_guess_;  // stage evaluations must not move the start
+  v_start_ = v_guess_;  // stage evaluations must not move the start
   close(t, y);
-  v_guess_ = v_start;
+  v_guess_ = v_start_;
   dyn_->evaluate(t, q_, qd_);
   dyn_->solve_partitioned(t, part_, qdd_, lambda_);
   const int nb = dyn_->nb(), nc = dyn_->nc();
@@ -138,11 +147,14 @@ void PartitionedSystem::after_step(double t, Eigen::VectorXd& y) {
   if (dyn_->m() == 0) return;
   ConstraintValues& cv = cv_after_;
   dyn_->constraints().evaluate(t, q_.data(), q_.data() + dyn_->nb(), nullptr, nullptr, cv);
-  const double current = sigma_min(jv_);
   // No partition can do 1 / repartition_ratio times better than this one when
   // sigma_min(J_v) already reaches that fraction of ||J_b||_F >= sigma_max(J_b)
-  // >= the best partition's sigma_min: skip the search.
-  if (current >= opt_.repartition_ratio * cv.jb.norm()) return;
+  // >= the best partition's sigma_min: skip the search. 1 / ||J_v^-1||_F is a
+  // lower bound of sigma_min(J_v) that costs no SVD.
+  const double bound = opt_.repartition_ratio * cv.jb.norm();
+  if (jv_.size() > 0 && jv_lu_.rcond() > 1e-8 && 1.0 / jv_lu_.inverse().norm() >= bound) return;
+  const double current = sigma_min(jv_);
+  if (current >= bound) return;
   double best = 0.0;
   const Partition p = choose_partition(dyn_->constraints(), cv, t, &best);
   if (current < opt_.repartition_ratio * best && p.dependent != part_.dependent) {

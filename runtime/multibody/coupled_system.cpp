@@ -289,46 +289,60 @@ void CoupledDynamics::solve_partitioned(double t, const Partition& p, Eigen::Vec
   //   v''    = X (gamma - g_c - J_u u'' - H mu),       X = J_v^-1
   //   q_c''  = a_c0 + W mu
   //   M_b q_b'' - J_b^T mu = r_b                       (16a) and (16b)
+  // Every matrix below is a member sized once: no allocation per evaluation.
   const int m = cc_.num_rows();
   const int nu = static_cast<int>(p.independent.size());
-  Eigen::MatrixXd jv(m, m), ju(m, nu);
-  for (int i = 0; i < m; ++i) jv.col(i) = cv_.jb.col(p.dependent[i]);
-  for (int i = 0; i < nu; ++i) ju.col(i) = cv_.jb.col(p.independent[i]);
-  Eigen::FullPivLU<Eigen::MatrixXd> jv_lu(jv);
-  if (m > 0 && !clearly_regular(jv, jv_lu.rcond(), cv_)) {
-    const double rel = sigma_min(jv) / constraint_scale(cv_);
-    if (!(rel >= kSingularRcond)) {
-      throw_singular_constraints(cc_, cv_.jb, t, rel, "J_v of the partition");
+  p_jv_.resize(m, m);
+  p_ju_.resize(m, nu);
+  for (int i = 0; i < m; ++i) p_jv_.col(i) = cv_.jb.col(p.dependent[i]);
+  for (int i = 0; i < nu; ++i) p_ju_.col(i) = cv_.jb.col(p.independent[i]);
+  p_d_.resize(m);
+  p_xju_.resize(m, nu);
+  p_xh_.resize(m, m);
+  if (m > 0) {
+    p_jv_lu_.compute(p_jv_);
+    if (!clearly_regular(p_jv_, p_jv_lu_.rcond(), cv_)) {
+      const double rel = sigma_min(p_jv_) / constraint_scale(cv_);
+      if (!(rel >= kSingularRcond)) {
+        throw_singular_constraints(cc_, cv_.jb, t, rel, "J_v of the partition");
+      }
     }
+    p_rhs_ = cv_.gamma - gc_;
+    p_d_ = p_jv_lu_.solve(p_rhs_);
+    p_xju_ = p_jv_lu_.solve(p_ju_);
+    p_xh_ = p_jv_lu_.solve(h_);
   }
-  const Eigen::VectorXd d = m > 0 ? Eigen::VectorXd(jv_lu.solve(cv_.gamma - gc_))
-                                  : Eigen::VectorXd::Zero(0);
-  const Eigen::MatrixXd xju = m > 0 ? Eigen::MatrixXd(jv_lu.solve(ju)) : Eigen::MatrixXd(0, nu);
-  const Eigen::MatrixXd xh = m > 0 ? Eigen::MatrixXd(jv_lu.solve(h_)) : Eigen::MatrixXd(0, 0);
   // Directions of q_b'' per unknown, then A = M_b * dir (- J_b^T for mu).
-  Eigen::MatrixXd dir = Eigen::MatrixXd::Zero(nb_, nb_);
+  p_dir_.setZero(nb_, nb_);
   for (int j = 0; j < nu; ++j) {
-    dir(p.independent[j], j) = 1.0;
-    for (int i = 0; i < m; ++i) dir(p.dependent[i], j) = -xju(i, j);
+    p_dir_(p.independent[j], j) = 1.0;
+    for (int i = 0; i < m; ++i) p_dir_(p.dependent[i], j) = -p_xju_(i, j);
   }
   for (int j = 0; j < m; ++j) {
-    for (int i = 0; i < m; ++i) dir(p.dependent[i], nu + j) = -xh(i, j);
+    for (int i = 0; i < m; ++i) p_dir_(p.dependent[i], nu + j) = -p_xh_(i, j);
   }
-  Eigen::VectorXd base = Eigen::VectorXd::Zero(nb_);
-  for (int i = 0; i < m; ++i) base(p.dependent[i]) = d(i);
-  Eigen::MatrixXd a = mb_ * dir;
-  a.rightCols(m) -= cv_.jb.transpose();
-  const Eigen::VectorXd b = rb_ - mb_ * base;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
-  if (!(lu.rcond() >= kSingularRcond)) {
-    throw_singular_mass_matrix(model_, bodies_, mb_, t);
+  p_base_.setZero(nb_);
+  for (int i = 0; i < m; ++i) p_base_(p.dependent[i]) = p_d_(i);
+  p_a_.resize(nb_, nb_);
+  p_a_.noalias() = mb_ * p_dir_;
+  p_a_.rightCols(m) -= cv_.jb.transpose();
+  p_b_ = rb_;
+  p_b_.noalias() -= mb_ * p_base_;
+  p_a_lu_.compute(p_a_);
+  if (!(p_a_lu_.rcond() >= kSingularRcond)) {
+    // Partial pivoting's estimate is the cheap screen; a full-pivoting LU
+    // decides, as before.
+    Eigen::FullPivLU<Eigen::MatrixXd> full(p_a_);
+    if (!(full.rcond() >= kSingularRcond)) throw_singular_mass_matrix(model_, bodies_, mb_, t);
   }
-  const Eigen::VectorXd x = lu.solve(b);
+  p_x_ = p_a_lu_.solve(p_b_);
   qdd.resize(nb_ + nc_);
-  qdd.head(nb_) = base + dir * x;
-  const Eigen::VectorXd mu = x.tail(m);
-  qdd.tail(nc_) = ac0_ + w_ * mu;
-  lambda = -mu;
+  qdd.head(nb_) = p_base_;
+  qdd.head(nb_).noalias() += p_dir_ * p_x_;
+  p_mu_ = p_x_.tail(m);
+  qdd.tail(nc_) = ac0_;
+  qdd.tail(nc_).noalias() += w_ * p_mu_;
+  lambda = -p_mu_;
 }
 
 double CoupledDynamics::phi_max(const ConstraintValues& cv, int* row) const {

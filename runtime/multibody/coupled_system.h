@@ -158,6 +158,10 @@ class CoupledDynamics {
   Eigen::VectorXd fb_, qb_force_, rb_, rc_, ac0_, gc_, tmp_;
   Eigen::MatrixXd w_, h_;
   ConstraintValues cv_;
+  // Workspace of solve_partitioned (sized on first use, no allocation after).
+  Eigen::MatrixXd p_jv_, p_ju_, p_xju_, p_xh_, p_dir_, p_a_;
+  Eigen::VectorXd p_d_, p_rhs_, p_base_, p_b_, p_x_, p_mu_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> p_jv_lu_, p_a_lu_;
   // M_c^-1 e_k of the beam DOFs that contacts have touched, per beam
   // (computed on first use: a slider visits a few elements, a pin one).
   std::vector<std::vector<Eigen::VectorXd>> minv_col_;
@@ -234,6 +238,11 @@ class PartitionedSystem : public CoupledSystem {
   Eigen::MatrixXd jv_;
   Eigen::PartialPivLU<Eigen::MatrixXd> jv_lu_;
   ConstraintValues cv_close_, cv_after_;  // workspace of close() and after_step()
+  Eigen::VectorXd v_start_, dv_, r_, vd_;   // workspace of rhs() and close()
+  // The y of the last successful closure: an integrator evaluates f at the
+  // state after_step() has just closed, which need not be closed again.
+  Eigen::VectorXd closed_y_;
+  bool closed_valid_ = false;
 };
 
 /// The augmented (multiplier) formulation. y = [q_b; q_c; q_b'; q_c'].
