@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "emit/cpp_printer.h"
+#include "model/parse_model.h"
 #include "symbolic/contact_kinematics.h"
 #include "symbolic/cse.h"
 #include "symbolic/rigid_dynamics.h"
@@ -92,9 +93,30 @@ long GeneratedSolver::total_operations() const {
 
 const char* generator_version() { return MBFE_GENERATOR_VERSION; }
 
+namespace {
+GeneratedSolver generate_solver_unchecked(const model::Model& model);
+}  // namespace
+
 GeneratedSolver generate_solver(const model::Model& model) {
   if (model.bodies.empty())
     throw std::invalid_argument("model '" + model.name + "' has no bodies: nothing to generate");
+  try {
+    return generate_solver_unchecked(model);
+  } catch (const std::overflow_error& e) {
+    // Every number of the file is finite, but products of huge ones (mass
+    // 1e300 at com 1e300) overflow a double: bad input, reported as such
+    // (exit status 2), not as an internal error.
+    // Regression input: tests/fuzz/regressions/overflowing_constants.yaml.
+    throw model::ModelError(model.source_path, {},
+                            "model '" + model.name + "': " + e.what() +
+                                " (a product of its masses, lengths, inertias or loads exceeds 1.8e308; "
+                                "use values of a physical magnitude)");
+  }
+}
+
+namespace {
+
+GeneratedSolver generate_solver_unchecked(const model::Model& model) {
   RigidDerivation d;
   derive_rigid_dynamics(model, d);
 
@@ -214,5 +236,7 @@ GeneratedSolver generate_solver(const model::Model& model) {
   solver.files.push_back({name + ".cpp", source.str()});
   return solver;
 }
+
+}  // namespace
 
 }  // namespace mbfe::gen

@@ -1,0 +1,131 @@
+// The body of the model fuzzer, shared by the libFuzzer target
+// (tests/fuzz/model_fuzz.cpp, built by scripts/fuzz.sh) and the regression
+// replay in the normal test suite (tests/fuzz/fuzz_regressions_test.cpp).
+//
+// One input: bytes -> parse_model_text (parse + validate) -> on success, the
+// IR invariants model.h promises are checked -> gen::generate_solver when the
+// model has 1..kMaxFuzzBodies bodies. Expected outcomes: success, a ModelError
+// (bad input, exit status 2 in the CLI) or std::invalid_argument (a model the
+// generator refuses). Anything else escaping -- another exception, a
+// FuzzInvariantError, a sanitizer report, a crash, a hang -- is a bug.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "emit/generate_solver.h"
+#include "model/model.h"
+#include "model/parse_model.h"
+
+namespace mbfe::fuzz {
+
+/// Larger models are parsed and validated but not derived, so that one input
+/// stays well under a second (derivation grows quickly with the chain length).
+constexpr std::size_t kMaxFuzzBodies = 8;
+
+/// The parser accepted a model that breaks a promise of model.h.
+class FuzzInvariantError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+namespace detail {
+
+inline void require(bool ok, const std::string& what) {
+  if (!ok) throw FuzzInvariantError("accepted model breaks an IR invariant: " + what);
+}
+
+inline bool finite2(const model::Vec2& v) { return std::isfinite(v[0]) && std::isfinite(v[1]); }
+
+inline void check_invariants(const model::Model& m) {
+  using model::is_identifier;
+  require(is_identifier(m.name), "model name '" + m.name + "' is not an identifier");
+  require(finite2(m.gravity), "gravity not finite");
+  const int nb = static_cast<int>(m.bodies.size());
+  for (int i = 0; i < nb; ++i) {
+    const model::Body& b = m.bodies[i];
+    require(is_identifier(b.name), "body name '" + b.name + "' is not an identifier");
+    require(b.parent >= -1 && b.parent < i, "body '" + b.name + "': parent index out of order");
+    require(std::isfinite(b.mass) && b.mass >= 0, "body '" + b.name + "': mass");
+    require(std::isfinite(b.inertia) && b.inertia >= 0, "body '" + b.name + "': inertia");
+    require(finite2(b.com) && finite2(b.joint.at) && finite2(b.joint.axis), "body '" + b.name + "': vector");
+    for (const auto& p : b.points) {
+      require(is_identifier(p.name), "point name '" + p.name + "' is not an identifier");
+      require(finite2(p.position), "point '" + p.name + "' not finite");
+    }
+  }
+  for (const model::Load& l : m.loads) {
+    require(l.body >= 0 && l.body < nb, "load body index out of range");
+    require(l.point >= -1 && l.point < static_cast<int>(m.bodies[l.body].points.size()),
+            "load point index out of range");
+    require(finite2(l.force) && std::isfinite(l.torque) && std::isfinite(l.stiffness) &&
+                std::isfinite(l.damping) && std::isfinite(l.rest),
+            "load value not finite");
+  }
+  for (const model::Beam& beam : m.beams) {
+    require(is_identifier(beam.name), "beam name '" + beam.name + "' is not an identifier");
+    require(beam.elements > 0, "beam '" + beam.name + "': elements <= 0");
+    require(std::isfinite(beam.length) && beam.length > 0, "beam '" + beam.name + "': length");
+    for (const auto& s : beam.supports)
+      require(s.node >= 0 && s.node <= beam.elements, "beam '" + beam.name + "': support node");
+    for (const auto& l : beam.loads)
+      require(l.node >= 0 && l.node <= beam.elements && std::isfinite(l.value),
+              "beam '" + beam.name + "': load node");
+  }
+  const int nbeams = static_cast<int>(m.beams.size());
+  for (const model::Contact& c : m.contacts) {
+    require(is_identifier(c.name), "contact name '" + c.name + "' is not an identifier");
+    require(c.body >= 0 && c.body < nb, "contact body index out of range");
+    require(c.point >= 0 && c.point < static_cast<int>(m.bodies[c.body].points.size()),
+            "contact point index out of range");
+    require(c.beam >= 0 && c.beam < nbeams, "contact beam index out of range");
+  }
+  require(m.initial.q.size() == m.bodies.size() && m.initial.qd.size() == m.bodies.size(),
+          "initial state size");
+  for (std::size_t i = 0; i < m.bodies.size(); ++i)
+    require(std::isfinite(m.initial.q[i]) && std::isfinite(m.initial.qd[i]), "initial state not finite");
+  require(std::isfinite(m.simulation.step) && m.simulation.step > 0, "simulation step");
+  require(std::isfinite(m.simulation.t_end) && m.simulation.t_end > 0, "simulation t_end");
+}
+
+}  // namespace detail
+
+/// What one input did (for statistics and the regression test's messages).
+enum class FuzzOutcome { kRejected, kParsed, kGenerated, kGeneratorRefused };
+
+/// Runs one input. Returns the outcome; lets every unexpected exception escape.
+inline FuzzOutcome fuzz_one_input(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  model::Model m;
+  try {
+    m = model::parse_model_text(text, "fuzz.yaml");
+  } catch (const model::ModelError& e) {
+    // Bad input must say where: "fuzz.yaml:" opens every message.
+    const std::string what = e.what();
+    if (what.rfind("fuzz.yaml:", 0) != 0)
+      throw FuzzInvariantError("ModelError without the file name in front: " + what);
+    return FuzzOutcome::kRejected;
+  }
+  detail::check_invariants(m);
+  if (m.bodies.empty() || m.bodies.size() > kMaxFuzzBodies) return FuzzOutcome::kParsed;
+  try {
+    const gen::GeneratedSolver solver = gen::generate_solver(m);
+    if (solver.files.empty()) throw FuzzInvariantError("generate_solver returned no files");
+    // Nothing of the file is pasted as text: names are identifiers, numbers
+    // are printed by the generator, so the sources are plain printable ASCII.
+    for (const gen::GeneratedFile& file : solver.files)
+      for (const char c : file.text)
+        detail::require(c == '\n' || (c >= ' ' && c <= '~'),
+                        "generated " + file.name + " holds a byte outside printable ASCII");
+  } catch (const std::invalid_argument&) {
+    return FuzzOutcome::kGeneratorRefused;
+  } catch (const model::ModelError&) {
+    return FuzzOutcome::kGeneratorRefused;
+  }
+  return FuzzOutcome::kGenerated;
+}
+
+}  // namespace mbfe::fuzz
