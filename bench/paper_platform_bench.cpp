@@ -15,7 +15,7 @@
 //                            contacts (generated kernels + element lookup)
 // What the right-hand side costs beyond the three parts is the partitioning
 // itself (Newton closure of v, W = M_c^-1 J_c^T, H, the small dense solves of
-// eqs (16)-(17)); docs/performance-coupled.md books it under constraints.
+// eqs (16)-(17)); docs/performance.md books it under constraints.
 #include <benchmark/benchmark.h>
 
 #include <memory>
