@@ -52,22 +52,55 @@ bool entry_is_intact(const fs::path& entry) {
   }
 }
 
-// Moves a bad entry out of the way atomically, then deletes it.
+// Moves a bad entry out of the way atomically, then deletes it. If the rename
+// fails, another process has moved it already (and may have put a fresh entry
+// in its place by the time we would delete): leave the path alone.
 void discard_entry(const fs::path& entry) {
   const fs::path trash = entry.string() + ".discard." + std::to_string(::getpid());
   std::error_code ec;
   fs::rename(entry, trash, ec);
-  fs::remove_all(ec ? entry : trash, ec);
+  if (!ec) fs::remove_all(trash, ec);
+}
+
+// Build folders and discarded entries that a killed process left behind (a
+// SIGKILL or power loss during a compile): removed once they are an hour old,
+// far longer than any compile takes.
+void remove_stale_leftovers(const fs::path& cache) {
+  std::error_code ec;
+  const auto now = fs::file_time_type::clock::now();
+  for (fs::directory_iterator it(cache, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(".build-", 0) != 0 && name.find(".discard.") == std::string::npos) continue;
+    std::error_code time_ec;
+    const auto modified = fs::last_write_time(it->path(), time_ec);
+    if (!time_ec && now - modified > std::chrono::hours(1)) {
+      std::error_code remove_ec;
+      fs::remove_all(it->path(), remove_ec);
+    }
+  }
+}
+
+// The compiler command: this build's compiler, unless the test-only hook
+// $MBFE_JIT_COMPILER_OVERRIDE names another command (tests/robustness uses it
+// to simulate a failing compiler). It is part of the cache key.
+std::string jit_compiler() {
+  if (const char* cc = std::getenv("MBFE_JIT_COMPILER_OVERRIDE"); cc && *cc) return cc;
+  return MBFE_JIT_COMPILER;
 }
 
 const mbfe_model_v1* open_library(const fs::path& library) {
   void* handle = ::dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) throw std::runtime_error(std::string("cannot load solver: ") + ::dlerror());
   auto entry = reinterpret_cast<mbfe_model_entry_fn>(::dlsym(handle, "mbfe_model_entry"));
-  if (!entry) throw std::runtime_error(library.string() + ": no mbfe_model_entry symbol");
+  if (!entry) {
+    ::dlclose(handle);  // so that a rebuilt library at the same path is loaded afresh
+    throw std::runtime_error(library.string() + ": no mbfe_model_entry symbol");
+  }
   const mbfe_model_v1* model = entry();
-  if (!model || model->abi_version != MBFE_MODEL_ABI_VERSION)
+  if (!model || model->abi_version != MBFE_MODEL_ABI_VERSION) {
+    ::dlclose(handle);
     throw std::runtime_error(library.string() + ": solver ABI version mismatch");
+  }
   return model;
 }
 
@@ -82,7 +115,8 @@ std::string solver_cache_dir() {
 
 LoadedSolver load_solver(const model::Model& model, bool quiet) {
   const gen::GeneratedSolver sources = gen::generate_solver(model);
-  std::string key_material = std::string("mbfe ") + gen::generator_version() + "\n" + MBFE_JIT_COMPILER +
+  const std::string compiler = jit_compiler();
+  std::string key_material = std::string("mbfe ") + gen::generator_version() + "\n" + compiler +
                              "\n" + MBFE_JIT_FLAGS + "\n";
   for (const auto& file : sources.files) key_material += file.name + "\n" + file.text;
   const std::string key = sha256_hex(key_material).substr(0, 32);
@@ -93,18 +127,25 @@ LoadedSolver load_solver(const model::Model& model, bool quiet) {
   result.library_path = (entry / kLibraryName).string();
 
   if (fs::exists(entry)) {
+    std::string damage = "checksum mismatch";
     if (entry_is_intact(entry)) {
-      result.model = open_library(entry / kLibraryName);
-      if (!quiet) std::cerr << "mbfe: using cached solver " << result.library_path << "\n";
-      return result;
+      try {
+        result.model = open_library(entry / kLibraryName);
+        if (!quiet) std::cerr << "mbfe: using cached solver " << result.library_path << "\n";
+        return result;
+      } catch (const std::runtime_error& e) {
+        damage = e.what();  // intact bytes that do not load: rebuild them too
+      }
     }
-    if (!quiet) std::cerr << "mbfe: cached solver " << entry.string() << " is damaged; rebuilding\n";
+    if (!quiet)
+      std::cerr << "mbfe: cached solver " << entry.string() << " is damaged (" << damage << "); rebuilding\n";
     discard_entry(entry);
   }
 
   std::error_code ec;
   fs::create_directories(cache, ec);
   if (ec) throw std::runtime_error(cache.string() + ": cannot create the solver cache: " + ec.message());
+  remove_stale_leftovers(cache);
   std::string staging_pattern = (cache / ".build-XXXXXX").string();
   if (!::mkdtemp(staging_pattern.data()))
     throw std::runtime_error(cache.string() + ": cannot create a build folder in the solver cache");
@@ -112,7 +153,7 @@ LoadedSolver load_solver(const model::Model& model, bool quiet) {
   try {
     for (const auto& file : sources.files) write_file_atomically((staging / file.name).string(), file.text);
     const fs::path library = staging / kLibraryName;
-    const std::string command = std::string(MBFE_JIT_COMPILER) + " " + MBFE_JIT_FLAGS +
+    const std::string command = compiler + " " + MBFE_JIT_FLAGS +
                                 " -std=c++17 -shared -fPIC -DMBFE_SHARED_ENTRY -I" +
                                 shell_quote(MBFE_JIT_ABI_INCLUDE) + " " +
                                 shell_quote((staging / (model.name + ".cpp")).string()) + " -o " +

@@ -6,7 +6,14 @@
 // compiler and its flags (content-addressed: a changed model or toolchain
 // gets a new entry). An entry is built in a private temporary folder and
 // renamed into place in one step, so concurrent processes never see half of
-// one; a corrupted entry (checksum mismatch) is discarded and rebuilt.
+// one; a corrupted entry (checksum mismatch, or bytes that do not load) is
+// discarded and rebuilt. Build folders left by a killed process are removed
+// once they are an hour old.
+//
+// Test hook: $MBFE_JIT_COMPILER_OVERRIDE, when set, replaces the compiler
+// command (it is then part of the cache key). tests/robustness/ points it at a
+// script that fails, to check that a failed compile leaves nothing behind and
+// shows the compiler's message. Not meant for users.
 #pragma once
 
 #include <string>
