@@ -4,6 +4,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "cli_args.h"
+
 namespace mbfe::tool {
 
 namespace {
@@ -15,7 +17,9 @@ CsvOutput::CsvOutput(const std::string& path) : path_(path) {
     file_ = stdout;
   } else {
     file_ = std::fopen(path.c_str(), "w");
-    if (!file_) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+    // A path that cannot be written (no such folder, no permission) is bad
+    // input: UsageError, exit status 2, before anything is computed.
+    if (!file_) throw UsageError(path + ": cannot write the output: " + std::strerror(errno));
     owned_ = true;
   }
 }

@@ -11,7 +11,7 @@ namespace mbfe::tool {
 class CsvOutput {
  public:
   /// Opens `path` for writing, or stdout when `path` is empty.
-  /// @throws std::runtime_error naming the path if it cannot be opened.
+  /// @throws UsageError (exit status 2) naming the path if it cannot be opened.
   explicit CsvOutput(const std::string& path);
   ~CsvOutput();
   CsvOutput(const CsvOutput&) = delete;
