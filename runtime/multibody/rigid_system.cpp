@@ -117,7 +117,10 @@ RigidSystem::RigidSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bo
   q_force_.resize(nq_);
   rhs_.resize(nq_);
   qdd_.resize(nq_);
-  llt_ = Eigen::LLT<Eigen::MatrixXd>(nq_);
+  // Allocates the factor's storage once. Not `llt_ = LLT(nq_)`: Eigen's sized
+  // constructor leaves its `info` uninitialised and the assignment copies it,
+  // which UndefinedBehaviorSanitizer reports (invalid enum load, LLT.h:66).
+  llt_.compute(Eigen::MatrixXd::Identity(nq_, nq_));
 }
 
 void RigidSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
