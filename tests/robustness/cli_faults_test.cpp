@@ -1,0 +1,156 @@
+// Faults at the command line, through the real `mbfe` binary: numerical
+// failures keep the output written so far (flushed, whole lines) and exit with
+// status 3; Ctrl-C stops cleanly; bad flags, a missing model file and an
+// unwritable --out exit with status 2 and say what is wrong.
+#include <gtest/gtest.h>
+
+#include <regex>
+#include <string>
+
+#include "robustness/cli_process.h"
+
+namespace mbfe::test {
+namespace {
+
+// The number N of "...; N rows written..." in a message, or -1.
+long rows_in_message(const std::string& err) {
+  std::smatch m;
+  static const std::regex re("(\\d+) rows written");
+  return std::regex_search(err, m, re) ? std::stol(m[1]) : -1;
+}
+
+class CliFaults : public ::testing::Test {
+ protected:
+  std::string env() const { return "MBFE_CACHE_DIR=" + quote((tmp_ / "cache").string()); }
+  RunResult mbfe(const std::string& args, const std::string& tag = "run") { return run_mbfe(tmp_, args, env(), tag); }
+  TempDir tmp_;
+};
+
+TEST_F(CliFaults, MasslessChainEndIsNamedAndThePartialCsvKept) {
+  const fs::path model = tmp_ / "massless.yaml";
+  spit(model,
+       "model: massless_end\n"
+       "gravity: [0, -9.81]\n"
+       "bodies:\n"
+       "  - {name: link1, parent: ground, joint: {type: revolute, at: [0, 0]}, mass: 1, inertia: 0.1, com: [0.5, 0]}\n"
+       "  - {name: dangling, parent: link1, joint: {type: revolute, at: [1, 0]}, mass: 0, inertia: 0}\n"
+       "simulation: {integrator: rk4, step: 1.0e-3, t_end: 0.1}\n");
+  const fs::path csv = tmp_ / "out.csv";
+  const RunResult r = mbfe("simulate " + quote(model.string()) + " --out " + quote(csv.string()));
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("mass matrix M(q) is singular"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bodies with mass 0 and inertia 0: dangling"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("link1;"), std::string::npos) << "the massive body is not blamed: " << r.err;
+  const std::string text = slurp(csv);
+  EXPECT_EQ(text.rfind("t,link1,dangling,link1_dot,dangling_dot\n", 0), 0u) << text;
+  const std::size_t rows = check_complete_csv(text);
+  EXPECT_EQ(static_cast<long>(rows), rows_in_message(r.err)) << r.err;
+}
+
+TEST_F(CliFaults, DivergingRigidSimulationExits3WithTheRowsSoFarFlushed) {
+  // A 1 kg slider on a 1e6 N/m spring: omega = 1000 rad/s; forward Euler with
+  // h = 1e-2 multiplies the amplitude by sqrt(1 + (h omega)^2) ~ 10 a step.
+  const fs::path model = tmp_ / "stiff.yaml";
+  spit(model,
+       "model: stiff_spring\n"
+       "gravity: [0, 0]\n"
+       "bodies:\n"
+       "  - {name: slider, parent: ground, joint: {type: prismatic, axis: [1, 0], at: [0, 0]}, mass: 1, inertia: 0}\n"
+       "loads:\n"
+       "  - {type: spring_damper, joint: slider, stiffness: 1.0e6, damping: 0, rest: 0}\n"
+       "initial: {q: {slider: 0.01}}\n"
+       "simulation: {integrator: forward_euler, step: 1.0e-2, t_end: 100}\n");
+  const fs::path csv = tmp_ / "out.csv";
+  const RunResult r = mbfe("simulate " + quote(model.string()) + " --every 1 --out " + quote(csv.string()));
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("diverged at t = "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("forward_euler"), std::string::npos) << r.err;
+  const std::string text = slurp(csv);
+  const std::size_t rows = check_complete_csv(text);
+  EXPECT_GE(rows, 5u);
+  EXPECT_LT(rows, 1000u);  // stopped long before t_end = 100 s (10,000 steps)
+  EXPECT_EQ(static_cast<long>(rows), rows_in_message(r.err)) << r.err;
+  // Every row written is finite: the diverged state itself is not written.
+  const auto lines = lines_of(text);
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    EXPECT_EQ(lines[i].find("inf"), std::string::npos) << lines[i];
+    EXPECT_EQ(lines[i].find("nan"), std::string::npos) << lines[i];
+  }
+}
+
+TEST_F(CliFaults, SigintStopsARunningSimulationWithThePartialCsvIntact) {
+  const fs::path csv = tmp_ / "long.csv";
+  // About 1e9 steps: hours. Rows every 1000 steps, flushed every 256 rows.
+  Spawned run({MBFE_CLI, "simulate", std::string(MBFE_SOURCE_DIR) + "/models/double_pendulum.yaml", "--step",
+               "1e-6", "--t-end", "1000", "--every", "1000", "--out", csv.string()},
+              {"MBFE_CACHE_DIR=" + (tmp_ / "cache").string()}, tmp_ / "sigint.stdout", tmp_ / "sigint.stderr");
+  ASSERT_GT(run.pid(), 0);
+  // Wait until it is integrating (the solver compiles first): the CSV has rows.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(300);
+  while (run.running() && std::chrono::steady_clock::now() < deadline) {
+    std::error_code ec;
+    if (fs::file_size(csv, ec) > 4096 && !ec) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_TRUE(run.running()) << "mbfe ended before the signal: " << slurp(tmp_ / "sigint.stderr");
+  ASSERT_EQ(::kill(run.pid(), SIGINT), 0);
+  const int status = run.wait_for(60);
+  ASSERT_NE(status, -1) << "mbfe did not stop within 60 s of SIGINT";
+  const std::string err = slurp(tmp_ / "sigint.stderr");
+  EXPECT_EQ(status, 3) << err;
+  EXPECT_NE(err.find("interrupted at t = "), std::string::npos) << err;
+  const std::string text = slurp(csv);
+  EXPECT_EQ(text.rfind("t,link1,link2,link1_dot,link2_dot\n", 0), 0u);
+  const std::size_t rows = check_complete_csv(text);
+  EXPECT_GE(rows, 10u);
+  EXPECT_EQ(static_cast<long>(rows), rows_in_message(err)) << err;
+}
+
+TEST_F(CliFaults, BadFlagsExit2) {
+  struct Case {
+    std::string args, message;
+  };
+  const std::vector<Case> cases = {
+      {"simulate models/double_pendulum.yaml --frobnicate", "unknown flag --frobnicate"},
+      {"simulate models/double_pendulum.yaml --step", "--step"},
+      {"simulate models/double_pendulum.yaml --step -1", "--step must be > 0"},
+      {"simulate models/double_pendulum.yaml --step abc", "--step"},
+      {"simulate models/double_pendulum.yaml --step nan", "--step"},
+      {"simulate models/double_pendulum.yaml --t-end 0", "--t-end must be > 0"},
+      {"simulate models/double_pendulum.yaml --every 0", "--every"},
+      {"simulate models/double_pendulum.yaml --integrator nonsense", "nonsense"},
+      {"simulate", "expected one model file"},
+      {"simulate a.yaml b.yaml", "expected one model file"},
+      {"eval models/double_pendulum.yaml --q 1,2,3", "--q"},
+      {"frobnicate models/double_pendulum.yaml", "unknown command 'frobnicate'"},
+  };
+  int i = 0;
+  for (const Case& c : cases) {
+    const RunResult r = mbfe(c.args, "flags" + std::to_string(i++));
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.err.find("error: "), std::string::npos) << "an internal error, not a usage error: " << r.err;
+  }
+}
+
+TEST_F(CliFaults, MissingModelFileExits2NamingTheFile) {
+  const std::string missing = (tmp_ / "no_such_model.yaml").string();
+  for (const char* command : {"simulate", "eval", "generate", "modal"}) {
+    const std::string extra = std::string(command) == "generate" ? " -o " + quote((tmp_ / "gen").string()) : "";
+    const RunResult r = mbfe(std::string(command) + " " + quote(missing) + extra, command);
+    EXPECT_EQ(r.status, 2) << command << ": " << r.err;
+    EXPECT_EQ(r.err.rfind(missing + ":", 0), 0u) << command << ": " << r.err;
+  }
+}
+
+TEST_F(CliFaults, OutIntoAMissingFolderExits2AndWritesNothing) {
+  const fs::path out = tmp_ / "no_such_folder" / "x.csv";
+  const RunResult r = mbfe("simulate models/double_pendulum.yaml --t-end 0.01 --out " + quote(out.string()));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find(out.string() + ": cannot write the output: No such file or directory"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(out.parent_path()));
+}
+
+}  // namespace
+}  // namespace mbfe::test
