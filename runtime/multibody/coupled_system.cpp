@@ -309,7 +309,10 @@ void CoupledDynamics::solve_partitioned(double t, const Partition& p, Eigen::Vec
     }
     p_rhs_ = cv_.gamma - gc_;
     p_d_ = p_jv_lu_.solve(p_rhs_);
-    p_xju_ = p_jv_lu_.solve(p_ju_);
+    // nu == 0 (every coordinate dependent): p_xju_ stays m x 0. Eigen's
+    // triangular solve of an empty right-hand side binds a reference to its
+    // null data, which UndefinedBehaviorSanitizer reports.
+    if (nu > 0) p_xju_ = p_jv_lu_.solve(p_ju_);
     p_xh_ = p_jv_lu_.solve(h_);
   }
   // Directions of q_b'' per unknown, then A = M_b * dir (- J_b^T for mu).
