@@ -35,6 +35,8 @@ int cmd_generate(const Args& args) {
   if (!out) throw UsageError("missing -o DIR (see --help)");
 
   const model::Model model = model::load_model_file(parsed.positional()[0]);
+  if (model.bodies.empty())
+    throw UsageError("model '" + model.name + "' has no bodies: beams need no generated code (try mbfe modal)");
   const gen::GeneratedSolver solver = gen::generate_solver(model);  // everything in memory first
   std::filesystem::create_directories(*out);
   for (const auto& file : solver.files) write_file_atomically(*out + "/" + file.name, file.text);

@@ -1,6 +1,7 @@
 // `mbfe stability`, `mbfe simulate` (beams), `mbfe plot` and `mbfe modal`'s
 // adjusted block end to end: runs the built binary (MBFE_CLI).
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -18,7 +19,9 @@ struct CliRun {
 };
 
 CliRun run_cli(const std::string& args, const std::string& env = "") {
-  const std::string err_file = std::string(MBFE_BINARY_DIR) + "/cli_test_stderr.txt";
+  // Per process: ctest -j runs the tests of this file at the same time.
+  const std::string err_file =
+      std::string(MBFE_BINARY_DIR) + "/cli_test_stderr_" + std::to_string(::getpid()) + ".txt";
   const std::string cmd = std::string("cd '") + MBFE_SOURCE_DIR + "' && " + env + " '" + MBFE_CLI + "' " + args +
                           " 2>'" + err_file + "'";
   CliRun r;
@@ -34,7 +37,9 @@ CliRun run_cli(const std::string& args, const std::string& env = "") {
   return r;
 }
 
-std::string tmp(const std::string& name) { return std::string(MBFE_BINARY_DIR) + "/cli_test_" + name; }
+std::string tmp(const std::string& name) {
+  return std::string(MBFE_BINARY_DIR) + "/cli_test_" + std::to_string(::getpid()) + "_" + name;
+}
 
 // method-notes prints 6 significant digits.
 constexpr double kNotesRel = 5e-6;
