@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "beam_probe.h"
 #include "cli_args.h"
 #include "csv_output.h"
 #include "damping/beam_model.h"
@@ -54,29 +55,9 @@ struct Probe {
 std::vector<Probe> parse_probes(const std::vector<std::string>& specs, const model::Model& model,
                                 const runtime::BeamModel& beams) {
   std::vector<Probe> out;
-  for (const std::string& spec : specs) {
-    const auto at = spec.find('@');
-    if (at == std::string::npos)
-      throw UsageError("--probe '" + spec + "': expected BEAM@S (S in m along the beam), e.g. beam1@0.5");
-    const std::string name = spec.substr(0, at);
-    const double s = parse_number(spec.substr(at + 1), "--probe " + spec);
-    std::size_t i = 0;
-    while (i < model.beams.size() && model.beams[i].name != name) ++i;
-    if (i == model.beams.size()) {
-      std::string names;
-      for (const auto& b : model.beams) names += (names.empty() ? "" : ", ") + b.name;
-      throw UsageError("--probe '" + spec + "': no beam named '" + name + "' (beams: " + names + ")");
-    }
-    Probe p;
-    p.label = spec;
-    p.offset = beams.beams[i].offset;
-    try {
-      p.weights = runtime::point_weights(beams.beams[i].system, s);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError("--probe '" + spec + "': " + e.what());
-    }
-    out.push_back(p);
-  }
+  auto system_of = [&](int i) -> const runtime::BeamSystem& { return beams.beams[i].system; };
+  for (BeamProbe& b : parse_beam_probes(specs, model, system_of))
+    out.push_back({std::move(b.label), beams.beams[b.beam].offset, b.weights});
   return out;
 }
 
