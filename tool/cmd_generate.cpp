@@ -43,7 +43,8 @@ int cmd_generate(const Args& args) {
   if (!parsed.has("quiet")) {
     std::cerr << "mbfe: wrote";
     for (const auto& file : solver.files) std::cerr << " " << *out << "/" << file.name;
-    std::cerr << " (" << solver.total_operations() << " operations)\n";
+    std::cerr << " (" << solver.total_emitted() << " operations emitted, " << solver.total_executed()
+              << " per call)\n";
   }
   return 0;
 }

@@ -13,6 +13,24 @@
 
 namespace mbfe::gen {
 
+long AncestorPairAssembly::pairs() const {
+  long count = 0;
+  for (std::size_t k = 0; k < parent.size(); ++k)
+    for (int j = static_cast<int>(k); j >= 0; j = parent[j]) ++count;
+  return count;
+}
+
+bool AncestorPairAssembly::has_unrelated_pairs() const {
+  const long n = static_cast<long>(parent.size());
+  return pairs() != n * (n + 1) / 2;  // every pair is related only in a chain
+}
+
+bool AncestorPairAssembly::is_chain() const {
+  for (std::size_t i = 0; i < parent.size(); ++i)
+    if (parent[i] != static_cast<int>(i) - 1) return false;
+  return true;
+}
+
 bool is_atomic(const GiNaC::ex& e) {
   return GiNaC::is_a<GiNaC::numeric>(e) || GiNaC::is_a<GiNaC::symbol>(e);
 }

@@ -5,6 +5,7 @@
 
 #include <ginac/ginac.h>
 
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -23,14 +24,42 @@ struct KernelOutput {
   GiNaC::ex value;
 };
 
+/// A loop printed after a kernel's outputs, the assembly step of the
+/// composite-rigid-body algorithm: for every body k and every body j on the
+/// path from k to the ground (j == k included),
+///   target[j*n + k] = target[k*n + j] = sum_c left[j][c] * right[k][c],
+/// and target[r*n + c] = 0 for pairs where neither body is an ancestor of the
+/// other. `left` and `right` are local n x width arrays that the kernel's
+/// outputs fill (straight-line code, O(N)); the loop keeps the code for the
+/// N(N+1)/2 entries of a chain's M from growing quadratically.
+struct AncestorPairAssembly {
+  std::string target;       // row-major n x n output, e.g. "M"
+  std::string left, right;  // local arrays, e.g. "motion_subspace", "composite_momentum"
+  std::string left_doc, right_doc;  // what a row of each holds (a comment in the emitted code)
+  int width = 0;                    // components per row
+  std::vector<int> parent;  // per body, -1 for the ground; a parent comes before its children
+
+  /// Passes of the loop per call: the (ancestor, descendant) pairs, j == k included.
+  long pairs() const;
+  /// True when some pair of bodies is on no common path (a branched tree):
+  /// their entries are zero and the target is cleared first.
+  bool has_unrelated_pairs() const;
+  /// True when every body's parent is the body before it (an unbranched
+  /// chain): the walk up the tree is then j - 1, no table lookup.
+  bool is_chain() const;
+  /// Arithmetic operations of one pass: width products, width - 1 sums.
+  long operations_per_pass() const { return width > 0 ? 2L * width - 1 : 0; }
+};
+
 /// A generated function: its statements (only those its outputs need, in
-/// definition order) and its outputs.
+/// definition order), its outputs, and optionally an assembly loop after them.
 struct Kernel {
   std::string name;       // C++ function name
   std::string signature;  // parameter list, e.g. "const double* q, double* M"
   std::string doc;        // one-line comment above the function
   std::vector<Assignment> statements;
   std::vector<KernelOutput> outputs;
+  std::optional<AncestorPairAssembly> assembly;
 };
 
 class CodeList {

@@ -1,5 +1,6 @@
 #include "symbolic/rigid_dynamics.h"
 
+#include <array>
 #include <string>
 
 namespace mbfe::gen {
@@ -190,35 +191,63 @@ void derive_rigid_dynamics(const model::Model& model, RigidDerivation& d) {
   d.generalized_forces = {"generalized_forces", "const double* q, const double* qd, double t, double* Q",
                           "Generalized forces Q(q, q', t): gravity, loads, spring-dampers.", {}, {}};
 
-  std::vector<std::vector<bool>> is_ancestor(n, std::vector<bool>(n, false));  // [j][k]: j on k's path
-  for (int k = 0; k < n; ++k)
-    for (int a = k; a >= 0; a = model.bodies[a].parent) is_ancestor[a][k] = true;
-
-  std::vector<ex> anchor(n);  // A_k = J_k + o_k . h_k (revolute k only)
-  for (int k = 0; k < n; ++k)
-    if (model.bodies[k].joint.type == JointType::kRevolute)
-      anchor[k] = code.define(second_moment[k] + dot(kin[k].origin, first_moment[k]));
-
-  auto mass_entry = [&](int j, int k) -> ex {  // j is an ancestor of k (or j == k)
-    const bool rev_j = model.bodies[j].joint.type == JointType::kRevolute;
-    const bool rev_k = model.bodies[k].joint.type == JointType::kRevolute;
+  // M by the composite-rigid-body algorithm (CRBA). Planar spatial vectors
+  // at the ground origin: (angular, linear x, linear y). The motion subspace of
+  // joint j is S_j = (1, o_jy, -o_jx) (revolute: the velocity at the origin of
+  // a unit rotation about o_j) or (0, u_jx, u_jy) (prismatic). The composite
+  // momentum of subtree k moving with a unit rate of joint k, U_k = I_k^c S_k
+  // (angular momentum about the origin, then linear momentum), is
+  //   revolute:  (A_k, -h_ky, h_kx),                 A_k = J_k + o_k . h_k
+  //   prismatic: ((C_k o_k + h_k) x u_k, C_k u_kx, C_k u_ky)
+  // and M_jk = S_j . U_k for every j on the path from k to the ground. Written
+  // out, M_jk is A_k - o_j . h_k (revolute j, k; J_k on the diagonal),
+  // u_j . (e_z x h_k), (e_z x (h_k + C_k (o_k - o_j))) . u_k, or C_k u_j . u_k.
+  // S and U are O(N) straight-line code; the pairs are summed by a loop in the
+  // emitted code (Kernel::assembly), so the code stays O(N) while a chain's M
+  // has N(N+1)/2 entries.
+  constexpr int kSpatial = 3;
+  AncestorPairAssembly assembly;
+  assembly.target = "M";
+  assembly.left = "motion_subspace";
+  assembly.left_doc = "S_j: joint j's unit motion, planar spatial vector at the ground origin";
+  assembly.right = "composite_momentum";
+  assembly.right_doc = "U_k: momentum of subtree k (about the origin, then linear) for a unit rate of joint k";
+  assembly.width = kSpatial;
+  std::vector<std::array<ex, kSpatial>> motion_of(n);
+  for (int k = 0; k < n; ++k) {
+    const model::Body& body = model.bodies[k];
+    const Vec2x& o = kin[k].origin;
     const Vec2x& h = first_moment[k];
-    if (rev_j && rev_k)  // sum m (p - o_j).(p - o_k) + I = A_k - o_j . h_k
-      return j == k ? second_moment[k] : anchor[k] - dot(kin[j].origin, h);
-    if (!rev_j && rev_k)  // sum m u_j . (e_z x (p - o_k))
-      return dot(kin[j].axis, perp(h));
-    if (rev_j && !rev_k)  // sum m (e_z x (p - o_j)) . u_k
-      return dot(perp(add(h, scale(composite_mass[k], sub(kin[k].origin, kin[j].origin)))), kin[k].axis);
-    return j == k ? composite_mass[k] : composite_mass[k] * dot(kin[j].axis, kin[k].axis);
-  };
-  for (int r = 0; r < n; ++r) {
-    for (int c = 0; c < n; ++c) {
-      ex value = 0;
-      if (is_ancestor[r][c]) value = code.define(mass_entry(r, c));
-      else if (is_ancestor[c][r]) value = code.define(mass_entry(c, r));
-      d.mass_matrix.outputs.push_back({"M[" + std::to_string(r * n + c) + "]", value});
+    std::array<ex, kSpatial>& motion = motion_of[k];
+    std::array<ex, kSpatial> momentum;
+    if (body.joint.type == JointType::kRevolute) {
+      motion = {1, o.y, -o.x};
+      momentum = {second_moment[k] + dot(o, h), -h.y, h.x};
+    } else {
+      const Vec2x& u = kin[k].axis;
+      motion = {0, u.x, u.y};
+      momentum = {cross(add(scale(composite_mass[k], o), h), u), composite_mass[k] * u.x,
+                  composite_mass[k] * u.y};
     }
+    // A component that is a named intermediate up to its sign is written as
+    // is (a unary minus is free); anything else becomes one.
+    auto output = [&](const std::string& array, int c, const ex& value) {
+      const ex v = is_atomic(value) || is_atomic(-value) ? value : code.define(value);
+      d.mass_matrix.outputs.push_back({array + "[" + std::to_string(k) + "][" + std::to_string(c) + "]", v});
+    };
+    // U_k[c] only ever multiplies S_j[c] of k and its ancestors; where all of
+    // those are zero (a root joint at the ground origin: S = (1, 0, 0)) it
+    // cannot count, and 0 saves computing it.
+    for (int c = 0; c < kSpatial; ++c) {
+      bool counts = false;
+      for (int j = k; j >= 0 && !counts; j = model.bodies[j].parent) counts = !motion_of[j][c].is_zero();
+      if (!counts) momentum[c] = 0;
+    }
+    for (int c = 0; c < kSpatial; ++c) output(assembly.left, c, motion[c]);
+    for (int c = 0; c < kSpatial; ++c) output(assembly.right, c, momentum[c]);
+    assembly.parent.push_back(body.parent);
   }
+  d.mass_matrix.assembly = assembly;
   for (int i = 0; i < n; ++i) {
     const bool rev = model.bodies[i].joint.type == JointType::kRevolute;
     const ex f = rev ? inertial_moment[i] : dot(kin[i].axis, inertial_force[i]);
@@ -242,6 +271,7 @@ void derive_rigid_dynamics(const model::Model& model, RigidDerivation& d) {
                 "M, F and Q at once, sharing the kinematics.", {}, {}};
   for (const Kernel* k : {&d.mass_matrix, &d.inertial_forces, &d.generalized_forces})
     d.dynamics.outputs.insert(d.dynamics.outputs.end(), k->outputs.begin(), k->outputs.end());
+  d.dynamics.assembly = d.mass_matrix.assembly;
   for (Kernel* k : {&d.mass_matrix, &d.inertial_forces, &d.generalized_forces, &d.dynamics})
     k->statements = code.closure(k->outputs);
   for (auto& pk : d.points) pk.kernel.statements = code.closure(pk.kernel.outputs);

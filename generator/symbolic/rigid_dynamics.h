@@ -7,10 +7,13 @@
 // accelerations of every body, each a named intermediate. F and Q come from
 // the Newton-Euler equations (5) with the successors' joint forces eliminated
 // by a backward pass (the recursive Newton-Euler algorithm with q'' = 0), so
-// they cost O(N). M comes from composite bodies (the mass, first and second
-// moments of each subtree, also by a backward pass), so each entry costs a
-// handful of operations. Nothing is ever inverted symbolically: the runtime
-// factors M numerically.
+// they cost O(N). M comes from the composite-rigid-body algorithm: the mass,
+// first and second moments of each subtree (also a backward pass) give each
+// joint's motion subspace and its subtree's composite momentum, O(N)
+// straight-line code; the kernels then sum one dot product per (ancestor,
+// descendant) pair in a loop (Kernel::assembly), so the emitted code stays
+// O(N) although a chain's M has N(N+1)/2 entries. Nothing is ever inverted
+// symbolically: the runtime factors M numerically.
 #pragma once
 
 #include <ginac/ginac.h>
