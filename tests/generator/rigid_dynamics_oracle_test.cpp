@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -158,6 +159,81 @@ TEST(GeneratedRigidDynamics, MatchesNumericalOracleOnRandomTrees) {
       expect_close(F, F_oracle, kBiasTol, "F");
       expect_close(Q, Q_oracle, kJacobianTol, "Q");
     }
+  }
+}
+
+// A fixed tree with both joint types and branches (so M has zero entries for
+// bodies on different branches, and the emitted assembly loop walks a parent
+// table instead of counting down). Checks M of mass_matrix and M, F, Q of the
+// fused dynamics kernel against the oracle; M starts filled with NaN so an
+// entry the kernels forget to write fails.
+constexpr const char* kBranchedMixedTree = R"(model: branched_mixed
+gravity: [0.3, -9.81]
+bodies:
+  - {name: cart, parent: ground, joint: {type: prismatic, axis: [1, 0.2], at: [0.1, -0.3]}, mass: 2.0, inertia: 0.1, com: [0.05, 0.02]}
+  - {name: arm, parent: cart, joint: {type: revolute, at: [0.2, 0.1]}, mass: 1.2, inertia: 0.08, com: [0.4, -0.05]}
+  - {name: slider, parent: arm, joint: {type: prismatic, axis: [0.6, -0.8], at: [0.7, 0.1]}, mass: 0.7, inertia: 0.02, com: [0.1, 0.1]}
+  - {name: hand, parent: slider, joint: {type: revolute, at: [0.15, 0]}, mass: 0.4, inertia: 0.01, com: [0.2, 0.03]}
+  - {name: elbow, parent: arm, joint: {type: revolute, at: [0.9, -0.1]}, mass: 0.9, inertia: 0.05, com: [0.3, 0.0]}
+  - {name: wheel, parent: cart, joint: {type: revolute, at: [-0.4, 0]}, mass: 0.5, inertia: 0.03, com: [0, 0.1]}
+  - {name: pole, parent: ground, joint: {type: revolute, at: [1.5, 0.5]}, mass: 1.0, inertia: 0.07, com: [0.25, 0.0]}
+  - {name: rider, parent: elbow, joint: {type: prismatic, axis: [0, 1], at: [0.5, 0]}, mass: 0.3, inertia: 0.004, com: [0.02, -0.01]}
+)";
+
+TEST(GeneratedRigidDynamics, BranchedMixedTreeMatchesOracleInBothKernels) {
+  const model::Model m = model::parse_model_text(kBranchedMixedTree, "branched_mixed.yaml");
+  const int n = static_cast<int>(m.bodies.size());
+  // What the test is for: both joint types, and bodies on different branches.
+  int prismatic = 0, unrelated_pairs = 0;
+  for (const auto& b : m.bodies) prismatic += b.joint.type == model::JointType::kPrismatic;
+  for (int r = 0; r < n; ++r)
+    for (int c = r + 1; c < n; ++c) {
+      bool related = false;
+      for (int a = c; a >= 0; a = m.bodies[a].parent) related = related || a == r;
+      unrelated_pairs += !related;
+    }
+  ASSERT_GE(prismatic, 2);
+  ASSERT_LT(prismatic, n);
+  ASSERT_GE(unrelated_pairs, 5);
+
+  const tool::LoadedSolver solver = tool::load_solver(m, /*quiet=*/true);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> angle(-3.0, 3.0), rate(-2.0, 2.0);
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::VectorXd q(n), qd(n);
+    for (int i = 0; i < n; ++i) {
+      q[i] = angle(rng);
+      qd[i] = rate(rng);
+    }
+    Eigen::MatrixXd M_oracle = Eigen::MatrixXd::Zero(n, n);
+    Eigen::VectorXd F_oracle = Eigen::VectorXd::Zero(n);
+    for (int i = 0; i < n; ++i) {
+      const auto& b = m.bodies[i];
+      const Eigen::MatrixXd J = point_jacobian(m, q, i, b.com);
+      const Eigen::RowVectorXd Jw = angle_jacobian(m, i);
+      M_oracle += b.mass * J.transpose() * J + b.inertia * Jw.transpose() * Jw;
+      F_oracle += b.mass * J.transpose() * bias_acceleration(m, q, qd, i, b.com);
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    RowMajor M = RowMajor::Constant(n, n, nan);
+    solver.model->mass_matrix(q.data(), M.data());
+    expect_close(M, M_oracle, kJacobianTol, "M (mass_matrix)");
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c < n; ++c) EXPECT_EQ(M(r, c), M(c, r)) << "M not symmetric at " << r << ", " << c;
+
+    RowMajor M_fused = RowMajor::Constant(n, n, nan);
+    Eigen::VectorXd F(n), Q(n), F_fused(n), Q_fused(n);
+    solver.model->inertial_forces(q.data(), qd.data(), F.data());
+    solver.model->generalized_forces(q.data(), qd.data(), 0.0, Q.data());
+    solver.model->dynamics(q.data(), qd.data(), 0.0, M_fused.data(), F_fused.data(), Q_fused.data());
+    expect_close(M_fused, M_oracle, kJacobianTol, "M (dynamics)");
+    expect_close(F_fused, F_oracle, kBiasTol, "F (dynamics)");
+    // The fused kernel is the same arithmetic as the separate ones, up to the
+    // order CSE puts it in.
+    expect_close(M_fused, M, 1e-13, "M: dynamics vs mass_matrix");
+    expect_close(F_fused, F, 1e-13, "F: dynamics vs inertial_forces");
+    expect_close(Q_fused, Q, 1e-13, "Q: dynamics vs generalized_forces");
   }
 }
 
