@@ -13,7 +13,7 @@ namespace mbfe::runtime {
 
 namespace {
 
-// A matrix is declared singular below this reciprocal condition estimate
+// A matrix (saddle point, reduced system) is declared singular below this reciprocal condition number
 // (double precision with a margin of ~1e3 ulps for the small dense solves).
 constexpr double kSingularRcond = 1e-13;
 
@@ -96,13 +96,13 @@ double constraint_scale(const ConstraintValues& cv) {
   return std::max(scale, 1e-300);
 }
 
-bool clearly_regular(const Eigen::MatrixXd& jv, double lu_rcond, const ConstraintValues& cv) {
-  if (jv.size() == 0) return true;
-  double big = cv.jb.size() > 0 ? cv.jb.cwiseAbs().maxCoeff() : 0.0;
-  if (cv.je.size() > 0) big = std::max(big, cv.je.cwiseAbs().maxCoeff());
-  // sigma_min(J_v) >~ rcond ||J_v|| / m >= 1e-8 * 1e-3 big / m, while
-  // constraint_scale <= sqrt(rows * cols) big: a margin of ~1e1..1e2 over 1e-13.
-  return lu_rcond >= 1e-8 && jv.cwiseAbs().maxCoeff() >= 1e-3 * big;
+bool clearly_regular(SmallLu& jv_lu, const ConstraintValues& cv) {
+  // constraint_scale(cv) = max(sigma_max(J_b), max |J_e|) <= this, since
+  // sigma_max <= the Frobenius norm.
+  double scale_upper = cv.jb.size() > 0 ? cv.jb.norm() : 0.0;
+  if (cv.je.size() > 0) scale_upper = std::max(scale_upper, cv.je.cwiseAbs().maxCoeff());
+  const double needed = kSingularConstraint * std::max(scale_upper, 1e-300);
+  return jv_lu.sigma_min_lower_cheap() >= needed || jv_lu.sigma_min_lower() >= needed;
 }
 
 double sigma_min(const Eigen::MatrixXd& a) {
@@ -139,7 +139,7 @@ Partition choose_partition(const ContactConstraints& cc, const ConstraintValues&
   for (int i = 0; i < m; ++i) jv.col(i) = jb.col(p.dependent[i]);
   const double smin = sigma_min(jv);
   const double rel = smin / constraint_scale(cv);
-  if (!(rel >= kSingularRcond)) throw_singular_constraints(cc, jb, t, rel, "J_b has rank < rows");
+  if (!(rel >= kSingularConstraint)) throw_singular_constraints(cc, jb, t, rel, "J_b has rank < rows");
   if (sigma_min_out) *sigma_min_out = smin;
   return p;
 }
@@ -186,7 +186,8 @@ CoupledDynamics::CoupledDynamics(const mbfe_model_v1& model, std::vector<Coupled
   h_.resize(m, m);
 }
 
-void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                               const ConstraintValues* at_q) {
   const int n = nb_ + nc_;
   if (q.size() != n || qd.size() != n) {
     std::ostringstream os;
@@ -205,7 +206,17 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
   }
   mb_ = mb_row_;
   rb_ = qb_force_ - fb_;
-  cc_.evaluate(t, qb, q.data() + nb_, qbd, qd.data() + nb_, cv_);
+  if (at_q != nullptr) {
+    cv_.phi = at_q->phi;  // same sizes every call: copies, no allocation
+    cv_.jb = at_q->jb;
+    cv_.je = at_q->je;
+    cv_.jcol = at_q->jcol;
+    cv_.s = at_q->s;
+    cv_.element = at_q->element;
+    cc_.evaluate_gamma(qb, q.data() + nb_, qbd, qd.data() + nb_, cv_);
+  } else {
+    cc_.evaluate(t, qb, q.data() + nb_, qbd, qd.data() + nb_, cv_);
+  }
   // Beam side: r_c = P - (C qd + K q), a_c0 = M_c^-1 r_c.
   for (std::size_t k = 0; k < beams_.size(); ++k) {
     const int off = nb_ + cc_.beam_offset(static_cast<int>(k));
@@ -301,19 +312,19 @@ void CoupledDynamics::solve_partitioned(double t, const Partition& p, Eigen::Vec
   p_xh_.resize(m, m);
   if (m > 0) {
     p_jv_lu_.compute(p_jv_);
-    if (!clearly_regular(p_jv_, p_jv_lu_.rcond(), cv_)) {
+    if (!clearly_regular(p_jv_lu_, cv_)) {
       const double rel = sigma_min(p_jv_) / constraint_scale(cv_);
-      if (!(rel >= kSingularRcond)) {
+      if (!(rel >= kSingularConstraint)) {
         throw_singular_constraints(cc_, cv_.jb, t, rel, "J_v of the partition");
       }
     }
     p_rhs_ = cv_.gamma - gc_;
-    p_d_ = p_jv_lu_.solve(p_rhs_);
+    p_jv_lu_.solve(p_rhs_, p_d_);
     // nu == 0 (every coordinate dependent): p_xju_ stays m x 0. Eigen's
     // triangular solve of an empty right-hand side binds a reference to its
     // null data, which UndefinedBehaviorSanitizer reports.
-    if (nu > 0) p_xju_ = p_jv_lu_.solve(p_ju_);
-    p_xh_ = p_jv_lu_.solve(h_);
+    if (nu > 0) p_jv_lu_.solve(p_ju_, p_xju_);
+    p_jv_lu_.solve(h_, p_xh_);
   }
   // Directions of q_b'' per unknown, then A = M_b * dir (- J_b^T for mu).
   p_dir_.setZero(nb_, nb_);
@@ -332,13 +343,12 @@ void CoupledDynamics::solve_partitioned(double t, const Partition& p, Eigen::Vec
   p_b_ = rb_;
   p_b_.noalias() -= mb_ * p_base_;
   p_a_lu_.compute(p_a_);
-  if (!(p_a_lu_.rcond() >= kSingularRcond)) {
-    // Partial pivoting's estimate is the cheap screen; a full-pivoting LU
-    // decides, as before.
+  if (!(p_a_lu_.rcond_lower_cheap() >= kSingularRcond || p_a_lu_.rcond_lower() >= kSingularRcond)) {
+    // The exact lower bounds are the cheap screen; a full-pivoting LU decides.
     Eigen::FullPivLU<Eigen::MatrixXd> full(p_a_);
     if (!(full.rcond() >= kSingularRcond)) throw_singular_mass_matrix(model_, bodies_, mb_, t);
   }
-  p_x_ = p_a_lu_.solve(p_b_);
+  p_a_lu_.solve(p_b_, p_x_);
   qdd.resize(nb_ + nc_);
   qdd.head(nb_) = p_base_;
   qdd.head(nb_).noalias() += p_dir_ * p_x_;

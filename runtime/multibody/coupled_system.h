@@ -37,6 +37,7 @@
 #include "integrators/ode_system.h"
 #include "multibody/contact_constraints.h"
 #include "multibody/rigid_system.h"
+#include "multibody/small_lu.h"
 
 namespace mbfe::runtime {
 
@@ -94,12 +95,17 @@ double constraint_scale(const ConstraintValues& cv);
 /// Smallest singular value of a matrix (1 for an empty one).
 double sigma_min(const Eigen::MatrixXd& a);
 
-/// A cheap sufficient test that the square J_v (LU-factored as `lu`) passes the
-/// singularity test sigma_min(J_v) >= 1e-13 constraint_scale(cv) with a wide
-/// margin: the LU's condition estimate is above 1e-8 and J_v is not tiny
-/// against the largest Jacobian entry. When it returns false the caller runs
-/// the exact (SVD) test; it only saves the SVDs on the common, healthy path.
-bool clearly_regular(const Eigen::MatrixXd& jv, double lu_rcond, const ConstraintValues& cv);
+/// J_v is declared singular when sigma_min(J_v) < kSingularConstraint x
+/// constraint_scale(cv) (double precision with a margin of ~1e3 ulps).
+constexpr double kSingularConstraint = 1e-13;
+
+/// A cheap, exact sufficient test that J_v (factored as `jv_lu`) passes the
+/// singularity test: a lower bound of sigma_min(J_v) (the pivot bound of
+/// SmallLu, then 1 / ||J_v^-1||_F) against an upper bound of
+/// constraint_scale(cv) (||J_b||_F, max |J_e|). When it returns false the
+/// caller runs the exact (SVD) test; it only saves the SVDs on the common,
+/// healthy path.
+bool clearly_regular(SmallLu& jv_lu, const ConstraintValues& cv);
 
 /// Contact forces and constraint residuals at one state.
 struct ContactReport {
@@ -129,8 +135,10 @@ class CoupledDynamics {
 
   /// Evaluates M_b, Q_b - F_b, P_c - f_c, the constraints with gamma, and the
   /// beam-side products a_c0 = M_c^-1 r_c, W = M_c^-1 J_c^T, H = J_c W.
-  /// q, qd: n entries ([q_b; q_c]).
-  void evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
+  /// q, qd: n entries ([q_b; q_c]). `at_q`, if given, holds the constraints
+  /// evaluated at this q already (without rates): only gamma is added.
+  void evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                const ConstraintValues* at_q = nullptr);
   const ConstraintValues& values() const { return cv_; }
 
   /// After evaluate(): q'' (n) and lambda (m) from the saddle-point system.
@@ -161,7 +169,7 @@ class CoupledDynamics {
   // Workspace of solve_partitioned (sized on first use, no allocation after).
   Eigen::MatrixXd p_jv_, p_ju_, p_xju_, p_xh_, p_dir_, p_a_;
   Eigen::VectorXd p_d_, p_rhs_, p_base_, p_b_, p_x_, p_mu_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> p_jv_lu_, p_a_lu_;
+  SmallLu p_jv_lu_, p_a_lu_;
   // M_c^-1 e_k of the beam DOFs that contacts have touched, per beam
   // (computed on first use: a slider visits a few elements, a pin one).
   std::vector<std::vector<Eigen::VectorXd>> minv_col_;
@@ -233,12 +241,20 @@ class PartitionedSystem : public CoupledSystem {
   Partition part_;
   int nu_ = 0, nz_ = 0;
   int repartitions_ = 0, last_iters_ = 0;
-  Eigen::VectorXd v_guess_;
+  // Newton's start for v: the v and v' of the last accepted closure at time t,
+  // extrapolated to the time asked for (error O(h^2) instead of O(h): one
+  // Newton iteration fewer per step).
+  struct Guess {
+    Eigen::VectorXd v, vd;
+    double t = 0.0;
+    bool has_rate = false;
+  };
+  Guess guess_, guess_saved_;
   Eigen::VectorXd q_, qd_, qdd_, lambda_, rhs_v_;
   Eigen::MatrixXd jv_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> jv_lu_;
-  ConstraintValues cv_close_, cv_after_;  // workspace of close() and after_step()
-  Eigen::VectorXd v_start_, dv_, r_, vd_;   // workspace of rhs() and close()
+  SmallLu jv_lu_;  // of jv_ at the last closed state
+  ConstraintValues cv_close_;  // of close(), at the last closed state (after_step reads it)
+  Eigen::VectorXd dv_, r_, vd_;   // workspace of close()
   // The y of the last successful closure: an integrator evaluates f at the
   // state after_step() has just closed, which need not be closed again.
   Eigen::VectorXd closed_y_;
