@@ -136,4 +136,22 @@ void ContactConstraints::evaluate(double t, const double* qb, const double* qc,
   }
 }
 
+void ContactConstraints::evaluate_gamma(const double* qb, const double* qc, const double* qbd,
+                                        const double* qcd, ConstraintValues& out) const {
+  out.gamma.resize(rows_);
+  for (int c = 0; c < num_contacts(); ++c) {
+    const mbfe_contact_kernels_v1& k = model_.contacts[c];
+    const BeamMesh& beam = beams_[k.beam];
+    const int idx = out.element[c];
+    double qe[4], qed[4];
+    for (int j = 0; j < 4; ++j) {
+      const int col = out.jcol(row0_[c], j);
+      qe[j] = col >= 0 ? qc[col] : 0.0;
+      qed[j] = col >= 0 ? qcd[col] : 0.0;
+    }
+    k.gamma(qb, qbd, qe, qed, idx * beam.element_length, beam.element_length,
+            out.gamma.data() + row0_[c]);
+  }
+}
+
 }  // namespace mbfe::runtime

@@ -73,6 +73,12 @@ class ContactConstraints {
   void evaluate(double t, const double* qb, const double* qc, const double* qbd,
                 const double* qcd, ConstraintValues& out) const;
 
+  /// gamma alone, into `out` that holds an evaluate() at this very (qb, qc)
+  /// (its elements and columns are reused): what an evaluation with rates
+  /// costs beyond one without.
+  void evaluate_gamma(const double* qb, const double* qc, const double* qbd, const double* qcd,
+                      ConstraintValues& out) const;
+
  private:
   const mbfe_model_v1& model_;
   std::vector<BeamMesh> beams_;

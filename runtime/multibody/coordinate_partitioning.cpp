@@ -2,7 +2,8 @@
 // The scheme (docs/partitioning.md):
 //   y = [u; q_c; u'; q_c'];  at every evaluation f(t, y):
 //   1. closure: Newton on Phi(u, v, q_c) = 0 for v, started from the v of the
-//      last accepted step, v <- v - J_v^-1 Phi, until the update stalls at
+//      last accepted step extrapolated with its v' (v + (t - t_last) v'),
+//      v <- v - J_v^-1 Phi, until the update stalls at
 //      round-off (|dv| <= 1e-14 (1 + |v|)) or |Phi| <= 1e-15 m; failure if
 //      max |Phi| > closure_tol (1e-10 m) after max_newton iterations;
 //   2. velocities: v' = -J_v^-1 (J_u u' + J_c q_c');
@@ -44,7 +45,8 @@ PartitionedSystem::PartitionedSystem(std::shared_ptr<CoupledDynamics> dyn, Parti
   set_partition(p);
   q_.setZero(dyn_->n());
   qd_.setZero(dyn_->n());
-  v_guess_.setZero(m);
+  guess_.v.setZero(m);
+  guess_.vd.setZero(m);
 }
 
 void PartitionedSystem::set_partition(const Partition& p) {
@@ -68,11 +70,15 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
   const int nb = dyn_->nb(), nc = dyn_->nc(), m = dyn_->m();
   const ContactConstraints& cc = dyn_->constraints();
   for (int i = 0; i < nu_; ++i) q_(part_.independent[i]) = y(i);
-  for (int i = 0; i < m; ++i) q_(part_.dependent[i]) = v_guess_(i);
+  for (int i = 0; i < m; ++i) {
+    const double v = guess_.v(i);
+    const double predicted = guess_.has_rate ? v + (t - guess_.t) * guess_.vd(i) : v;
+    q_(part_.dependent[i]) = std::isfinite(predicted) ? predicted : v;
+  }
   q_.tail(nc) = y.segment(nu_, nc);
   ConstraintValues& cv = cv_close_;
   jv_.resize(m, m);
-  bool stalled = false;
+  bool stalled = false, diverged = false;
   int it = 0;
   for (;; ++it) {
     cc.evaluate(t, q_.data(), q_.data() + nb, nullptr, nullptr, cv);
@@ -81,8 +87,8 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
     if (phi <= kPhiRoundoff || stalled || it >= opt_.max_newton) break;
     jv_lu_.compute(jv_);
     const double rel =
-        clearly_regular(jv_, jv_lu_.rcond(), cv) ? 1.0 : sigma_min(jv_) / constraint_scale(cv);
-    if (!(rel >= 1e-13)) {
+        clearly_regular(jv_lu_, cv) ? 1.0 : sigma_min(jv_) / constraint_scale(cv);
+    if (!(rel >= kSingularConstraint)) {
       // choose_partition names the contact when J_b itself is singular.
       choose_partition(cc, cv, t);
       std::ostringstream os;
@@ -91,19 +97,22 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
          << "); the partition is chosen again only between steps: reduce the step";
       throw SingularConstraintError(os.str(), cc.contact_name(0), t, rel);
     }
-    dv_ = jv_lu_.solve(cv.phi);
+    jv_lu_.solve(cv.phi, dv_);
     const Eigen::VectorXd& dv = dv_;
     double vmax = 0.0;
     for (int i = 0; i < m; ++i) {
       q_(part_.dependent[i]) -= dv(i);
       vmax = std::max(vmax, std::abs(q_(part_.dependent[i])));
     }
-    if (!dv.allFinite()) break;
+    if (!dv.allFinite()) {  // q_ is lost and cv no longer describes it: a failure
+      diverged = true;
+      break;
+    }
     stalled = dv.cwiseAbs().maxCoeff() <= kStepRoundoff * (1.0 + vmax);
   }
   last_iters_ = it;
   int row = 0;
-  const double phi = dyn_->phi_max(cv, &row);
+  const double phi = diverged ? NAN : dyn_->phi_max(cv, &row);
   if (!(phi <= opt_.closure_tol)) {
     const int c = cc.contact_of_row(row);
     std::ostringstream os;
@@ -113,7 +122,9 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
        << " m); the step is too large for the motion, or the linkage cannot reach the beam";
     throw NewtonClosureError(os.str(), cc.contact_name(c), t, phi);
   }
-  for (int i = 0; i < m; ++i) v_guess_(i) = q_(part_.dependent[i]);
+  for (int i = 0; i < m; ++i) guess_.v(i) = q_(part_.dependent[i]);
+  guess_.t = t;
+  guess_.has_rate = false;
   // Velocities: J_v v' = -(J_u u' + J_c q_c').
   for (int i = 0; i < nu_; ++i) qd_(part_.independent[i]) = y(nz_ + i);
   qd_.tail(nc) = y.segment(nz_ + nu_, nc);
@@ -122,18 +133,20 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
     cv.jc_times(qd_.tail(nc), r_);
     for (int i = 0; i < nu_; ++i) r_ += cv.jb.col(part_.independent[i]) * y(nz_ + i);
     r_ = -r_;
-    vd_ = jv_lu_.solve(r_);
+    jv_lu_.solve(r_, vd_);
     for (int i = 0; i < m; ++i) qd_(part_.dependent[i]) = vd_(i);
+    guess_.vd = vd_;
+    guess_.has_rate = vd_.allFinite();
   }
   closed_y_ = y;
   closed_valid_ = true;
 }
 
 void PartitionedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
-  v_start_ = v_guess_;  // stage evaluations must not move the start
+  guess_saved_ = guess_;  // stage evaluations must not move the start (same sizes: no allocation)
   close(t, y);
-  v_guess_ = v_start_;
-  dyn_->evaluate(t, q_, qd_);
+  guess_ = guess_saved_;
+  dyn_->evaluate(t, q_, qd_, &cv_close_);  // close() evaluated the constraints at q_
   dyn_->solve_partitioned(t, part_, qdd_, lambda_);
   const int nb = dyn_->nb(), nc = dyn_->nc();
   ydot.resize(2 * nz_);
@@ -145,14 +158,17 @@ void PartitionedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd&
 void PartitionedSystem::after_step(double t, Eigen::VectorXd& y) {
   close(t, y);
   if (dyn_->m() == 0) return;
-  ConstraintValues& cv = cv_after_;
-  dyn_->constraints().evaluate(t, q_.data(), q_.data() + dyn_->nb(), nullptr, nullptr, cv);
+  // close() ended with an evaluation at the closed q_: its values are those of this state.
+  const ConstraintValues& cv = cv_close_;
   // No partition can do 1 / repartition_ratio times better than this one when
   // sigma_min(J_v) already reaches that fraction of ||J_b||_F >= sigma_max(J_b)
-  // >= the best partition's sigma_min: skip the search. 1 / ||J_v^-1||_F is a
-  // lower bound of sigma_min(J_v) that costs no SVD.
+  // >= the best partition's sigma_min: skip the search. SmallLu's lower bounds
+  // of sigma_min(J_v) cost no SVD.
   const double bound = opt_.repartition_ratio * cv.jb.norm();
-  if (jv_.size() > 0 && jv_lu_.rcond() > 1e-8 && 1.0 / jv_lu_.inverse().norm() >= bound) return;
+  if (jv_.size() > 0 &&
+      (jv_lu_.sigma_min_lower_cheap() >= bound || jv_lu_.sigma_min_lower() >= bound)) {
+    return;
+  }
   const double current = sigma_min(jv_);
   if (current >= bound) return;
   double best = 0.0;
@@ -167,7 +183,8 @@ void PartitionedSystem::after_step(double t, Eigen::VectorXd& y) {
     }
     y.segment(nu_, nc) = q_.tail(nc);
     y.segment(nz_ + nu_, nc) = qd_.tail(nc);
-    for (int i = 0; i < dyn_->m(); ++i) v_guess_(i) = q_(part_.dependent[i]);
+    for (int i = 0; i < dyn_->m(); ++i) guess_.v(i) = q_(part_.dependent[i]);
+    guess_.has_rate = false;
   }
 }
 
@@ -208,7 +225,8 @@ Eigen::VectorXd PartitionedSystem::initial_state(double t, const Eigen::VectorXd
     for (int j = 0; j < nb; ++j) (dep[j] ? p.dependent : p.independent).push_back(j);
   }
   set_partition(p);
-  for (int i = 0; i < dyn_->m(); ++i) v_guess_(i) = q(part_.dependent[i]);
+  for (int i = 0; i < dyn_->m(); ++i) guess_.v(i) = q(part_.dependent[i]);
+  guess_.has_rate = false;
   Eigen::VectorXd y(2 * nz_);
   for (int i = 0; i < nu_; ++i) {
     y(i) = q(part_.independent[i]);
@@ -222,9 +240,9 @@ Eigen::VectorXd PartitionedSystem::initial_state(double t, const Eigen::VectorXd
 
 void PartitionedSystem::full_state(double t, const Eigen::VectorXd& y, Eigen::VectorXd& q,
                                    Eigen::VectorXd& qd) {
-  const Eigen::VectorXd v_start = v_guess_;
+  const Guess saved = guess_;
   close(t, y);
-  v_guess_ = v_start;
+  guess_ = saved;
   q = q_;
   qd = qd_;
 }
