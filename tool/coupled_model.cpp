@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "cli_args.h"
+#include "damping/low_rank_kernel.h"
 #include "multibody/linearization.h"
 #include "multibody/rigid_system.h"
 
@@ -51,31 +52,23 @@ runtime::BeamForceFn beam_force(const runtime::BeamPart& beam, bool adjusted) {
 runtime::BeamForceFn beam_acceleration(const runtime::BeamPart& beam, bool adjusted) {
   const runtime::BeamSystem& sys = beam.system;
   if (!adjusted || !beam.has_adjustment || !beam.adjusted.uniform) return {};
-  auto na = std::make_shared<runtime::NodalAdjusted>(runtime::low_rank_adjusted(sys.M, beam.basis, beam.adjusted));
-  if (na->C.S.size() > 0 || na->K.S.size() > 0) return {};
+  const runtime::NodalAdjusted na = runtime::low_rank_adjusted(sys.M, beam.basis, beam.adjusted);
+  if (na.C.S.size() > 0 || na.K.S.size() > 0) return {};
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(sys.M);
   if (ldlt.info() != Eigen::Success) return {};
   const Eigen::VectorXd minv_p = ldlt.solve(sys.P);
-  const int m = static_cast<int>(na->U.cols());
-  Eigen::VectorXd ux(m), uv(m), r(m);
-  return [na, minv_p, ux, uv, r](const Eigen::Ref<const Eigen::VectorXd>& q,
-                                 const Eigen::Ref<const Eigen::VectorXd>& qd,
-                                 Eigen::Ref<Eigen::VectorXd> a) mutable {
-    const runtime::NodalOperator& C = na->C;
-    const runtime::NodalOperator& K = na->K;
-    a = minv_p - C.s * qd - K.s * q;
-    if (na->U.cols() > 0) {
-      r.setZero();
-      if (C.d.size() > 0) {
-        uv.noalias() = na->U.transpose() * qd;
-        r += C.d.cwiseProduct(uv);
-      }
-      if (K.d.size() > 0) {
-        ux.noalias() = na->U.transpose() * q;
-        r += K.d.cwiseProduct(ux);
-      }
-      a.noalias() -= na->phi * r;
-    }
+  const Eigen::Index m = na.U.cols();
+  auto low_rank = std::make_shared<runtime::LowRankCorrection>();
+  low_rank->U = na.U;
+  low_rank->phi = na.phi;
+  low_rank->d_C = na.C.d.size() == m ? na.C.d : Eigen::VectorXd::Zero(m);
+  low_rank->d_K = na.K.d.size() == m ? na.K.d : Eigen::VectorXd::Zero(m);
+  const double s_C = na.C.s, s_K = na.K.s;
+  return [low_rank, minv_p, s_C, s_K](const Eigen::Ref<const Eigen::VectorXd>& q,
+                                      const Eigen::Ref<const Eigen::VectorXd>& qd,
+                                      Eigen::Ref<Eigen::VectorXd> a) {
+    a = minv_p - s_C * qd - s_K * q;
+    if (low_rank->U.cols() > 0) runtime::subtract_low_rank(*low_rank, q.data(), qd.data(), a.data());
   };
 }
 
