@@ -29,43 +29,62 @@ __attribute__((target("avx2,fma"))) double horizontal_sum(__m256d v) {
   return _mm_cvtsd_f64(_mm_add_sd(pair, _mm_unpackhi_pd(pair, pair)));
 }
 
+// Columns j .. j + B - 1 at once: the dot products share the loads of q and
+// qd and run 2 B independent FMA chains (one chain is bound by the FMA
+// latency); the update of `a` loads and stores it once per B columns.
+template <int B>
+__attribute__((target("avx2,fma"))) void subtract_block(const LowRankCorrection& op, int j,
+                                                        const double* q, const double* qd,
+                                                        double* a) {
+  const int n = static_cast<int>(op.U.rows());
+  const double* u[B];
+  const double* p[B];
+  for (int c = 0; c < B; ++c) {
+    u[c] = op.U.data() + static_cast<std::ptrdiff_t>(j + c) * n;
+    p[c] = op.phi.data() + static_cast<std::ptrdiff_t>(j + c) * n;
+  }
+  __m256d uq[B], uv[B];
+  for (int c = 0; c < B; ++c) uq[c] = uv[c] = _mm256_setzero_pd();
+  int k = 0;
+  for (; k + 4 <= n; k += 4) {
+    const __m256d q4 = _mm256_loadu_pd(q + k), qd4 = _mm256_loadu_pd(qd + k);
+    for (int c = 0; c < B; ++c) {
+      const __m256d u4 = _mm256_loadu_pd(u[c] + k);
+      uq[c] = _mm256_fmadd_pd(u4, q4, uq[c]);
+      uv[c] = _mm256_fmadd_pd(u4, qd4, uv[c]);
+    }
+  }
+  double r[B];
+  for (int c = 0; c < B; ++c) {
+    double dot_q = horizontal_sum(uq[c]), dot_qd = horizontal_sum(uv[c]);
+    for (int i = k; i < n; ++i) {
+      dot_q += u[c][i] * q[i];
+      dot_qd += u[c][i] * qd[i];
+    }
+    r[c] = op.d_C[j + c] * dot_qd + op.d_K[j + c] * dot_q;
+  }
+  // a -= sum_c r_c phi_(j+c)
+  __m256d rc[B];
+  for (int c = 0; c < B; ++c) rc[c] = _mm256_set1_pd(r[c]);
+  k = 0;
+  for (; k + 4 <= n; k += 4) {
+    __m256d a4 = _mm256_loadu_pd(a + k);
+    for (int c = 0; c < B; ++c) a4 = _mm256_fnmadd_pd(rc[c], _mm256_loadu_pd(p[c] + k), a4);
+    _mm256_storeu_pd(a + k, a4);
+  }
+  for (; k < n; ++k) {
+    for (int c = 0; c < B; ++c) a[k] -= r[c] * p[c][k];
+  }
+}
+
 }  // namespace
 
-__attribute__((target("avx2,fma"))) void subtract_low_rank_avx2(const LowRankCorrection& op,
-                                                                 const double* q,
-                                                                 const double* qd, double* a) {
-  const int n = static_cast<int>(op.U.rows());
+void subtract_low_rank_avx2(const LowRankCorrection& op, const double* q, const double* qd,
+                            double* a) {
   const int m = static_cast<int>(op.U.cols());
-  for (int j = 0; j < m; ++j) {
-    // u_j . q and u_j . qd in one pass over the column, two accumulators each
-    // (the FMA latency, not the loads, bounds a single chain).
-    const double* u = op.U.data() + static_cast<std::ptrdiff_t>(j) * n;
-    __m256d uq0 = _mm256_setzero_pd(), uq1 = _mm256_setzero_pd();
-    __m256d uv0 = _mm256_setzero_pd(), uv1 = _mm256_setzero_pd();
-    int k = 0;
-    for (; k + 8 <= n; k += 8) {
-      const __m256d u0 = _mm256_loadu_pd(u + k), u1 = _mm256_loadu_pd(u + k + 4);
-      uq0 = _mm256_fmadd_pd(u0, _mm256_loadu_pd(q + k), uq0);
-      uq1 = _mm256_fmadd_pd(u1, _mm256_loadu_pd(q + k + 4), uq1);
-      uv0 = _mm256_fmadd_pd(u0, _mm256_loadu_pd(qd + k), uv0);
-      uv1 = _mm256_fmadd_pd(u1, _mm256_loadu_pd(qd + k + 4), uv1);
-    }
-    double uq = horizontal_sum(_mm256_add_pd(uq0, uq1));
-    double uv = horizontal_sum(_mm256_add_pd(uv0, uv1));
-    for (; k < n; ++k) {
-      uq += u[k] * q[k];
-      uv += u[k] * qd[k];
-    }
-    // a -= r_j phi_j
-    const double r = op.d_C[j] * uv + op.d_K[j] * uq;
-    const double* p = op.phi.data() + static_cast<std::ptrdiff_t>(j) * n;
-    const __m256d rj = _mm256_set1_pd(r);
-    k = 0;
-    for (; k + 4 <= n; k += 4) {
-      _mm256_storeu_pd(a + k, _mm256_fnmadd_pd(rj, _mm256_loadu_pd(p + k), _mm256_loadu_pd(a + k)));
-    }
-    for (; k < n; ++k) a[k] -= r * p[k];
-  }
+  int j = 0;
+  for (; j + 4 <= m; j += 4) subtract_block<4>(op, j, q, qd, a);
+  for (; j < m; ++j) subtract_block<1>(op, j, q, qd, a);
 }
 
 bool avx2_available() {
