@@ -61,8 +61,10 @@ runtime::BeamForceFn beam_acceleration(const runtime::BeamPart& beam, bool adjus
   auto low_rank = std::make_shared<runtime::LowRankCorrection>();
   low_rank->U = na.U;
   low_rank->phi = na.phi;
-  low_rank->d_C = na.C.d.size() == m ? na.C.d : Eigen::VectorXd::Zero(m);
-  low_rank->d_K = na.K.d.size() == m ? na.K.d : Eigen::VectorXd::Zero(m);
+  // An operator without a modal part has an empty d: no correction.
+  low_rank->d_C = na.C.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.C.d;
+  low_rank->d_K = na.K.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.K.d;
+  runtime::check_shape(*low_rank);
   const double s_C = na.C.s, s_K = na.K.s;
   return [low_rank, minv_p, s_C, s_K](const Eigen::Ref<const Eigen::VectorXd>& q,
                                       const Eigen::Ref<const Eigen::VectorXd>& qd,

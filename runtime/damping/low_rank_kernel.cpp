@@ -1,6 +1,8 @@
 #include "damping/low_rank_kernel.h"
 
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define MBFE_LOW_RANK_AVX2 1
@@ -8,6 +10,17 @@
 #endif
 
 namespace mbfe::runtime {
+
+void check_shape(const LowRankCorrection& op) {
+  const Eigen::Index m = op.U.cols();
+  if (op.phi.rows() != op.U.rows() || op.phi.cols() != m || op.d_C.size() != m || op.d_K.size() != m) {
+    throw std::invalid_argument("low-rank correction: U is " + std::to_string(op.U.rows()) + " x " +
+                                std::to_string(m) + ", Phi_L " + std::to_string(op.phi.rows()) + " x " +
+                                std::to_string(op.phi.cols()) + ", d_C and d_K have " +
+                                std::to_string(op.d_C.size()) + " and " + std::to_string(op.d_K.size()) +
+                                " entries; expected the same n x m shapes and m entries");
+  }
+}
 
 void subtract_low_rank_eigen(const LowRankCorrection& op, const double* q, const double* qd,
                              double* a) {

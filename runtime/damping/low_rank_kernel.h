@@ -24,8 +24,14 @@ struct LowRankCorrection {
   Eigen::VectorXd d_C, d_K;  // m
 };
 
+/// @throws std::invalid_argument unless U and phi are both n x m and d_C,
+///         d_K have m entries (the kernels below do not check).
+void check_shape(const LowRankCorrection& op);
+
 /// a -= Phi_L (d_C .* (U^T qd) + d_K .* (U^T q)) by the fastest form this
-/// processor runs. q, qd, a: n entries; a may not alias q or qd.
+/// processor runs. q, qd, a: n entries; a may not alias q or qd. The forms
+/// differ in summation order (and FMA rounding), so results agree across
+/// processors to round-off, not bit for bit.
 void subtract_low_rank(const LowRankCorrection& op, const double* q, const double* qd, double* a);
 
 /// The two forms, for tests and benchmarks. The AVX2 one exists only when

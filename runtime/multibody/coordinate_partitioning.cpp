@@ -26,6 +26,8 @@ namespace {
 
 // Newton stops once the update is at round-off of the coordinates, or Phi is.
 constexpr double kStepRoundoff = 1e-14;
+// The Newton start is extrapolated with v' over at most this many accepted steps.
+constexpr double kMaxExtrapolatedSteps = 4.0;
 constexpr double kPhiRoundoff = 1e-15;  // m
 
 }  // namespace
@@ -70,9 +72,14 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
   const int nb = dyn_->nb(), nc = dyn_->nc(), m = dyn_->m();
   const ContactConstraints& cc = dyn_->constraints();
   for (int i = 0; i < nu_; ++i) q_(part_.independent[i]) = y(i);
+  // Extrapolate over at most a few accepted steps: an RK stage or the next
+  // step, not a call at some distant t that could land on another branch of
+  // the linkage.
+  const bool extrapolate = guess_.valid && guess_.h > 0.0 &&
+                           std::abs(t - guess_.t) <= kMaxExtrapolatedSteps * guess_.h;
   for (int i = 0; i < m; ++i) {
     const double v = guess_.v(i);
-    const double predicted = guess_.has_rate ? v + (t - guess_.t) * guess_.vd(i) : v;
+    const double predicted = extrapolate ? v + (t - guess_.t) * guess_.vd(i) : v;
     q_(part_.dependent[i]) = std::isfinite(predicted) ? predicted : v;
   }
   q_.tail(nc) = y.segment(nu_, nc);
@@ -122,9 +129,6 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
        << " m); the step is too large for the motion, or the linkage cannot reach the beam";
     throw NewtonClosureError(os.str(), cc.contact_name(c), t, phi);
   }
-  for (int i = 0; i < m; ++i) guess_.v(i) = q_(part_.dependent[i]);
-  guess_.t = t;
-  guess_.has_rate = false;
   // Velocities: J_v v' = -(J_u u' + J_c q_c').
   for (int i = 0; i < nu_; ++i) qd_(part_.independent[i]) = y(nz_ + i);
   qd_.tail(nc) = y.segment(nz_ + nu_, nc);
@@ -135,17 +139,13 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
     r_ = -r_;
     jv_lu_.solve(r_, vd_);
     for (int i = 0; i < m; ++i) qd_(part_.dependent[i]) = vd_(i);
-    guess_.vd = vd_;
-    guess_.has_rate = vd_.allFinite();
   }
   closed_y_ = y;
   closed_valid_ = true;
 }
 
 void PartitionedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
-  guess_saved_ = guess_;  // stage evaluations must not move the start (same sizes: no allocation)
   close(t, y);
-  guess_ = guess_saved_;
   dyn_->evaluate(t, q_, qd_, &cv_close_);  // close() evaluated the constraints at q_
   dyn_->solve_partitioned(t, part_, qdd_, lambda_);
   const int nb = dyn_->nb(), nc = dyn_->nc();
@@ -155,8 +155,22 @@ void PartitionedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd&
   ydot.tail(nc) = qdd_.segment(nb, nc);
 }
 
+void PartitionedSystem::remember_start(double t) {
+  const int m = dyn_->m();
+  guess_.h = guess_.valid ? t - guess_.t : 0.0;
+  guess_.t = t;
+  guess_.valid = true;
+  guess_.v.resize(m);
+  guess_.vd.resize(m);
+  for (int i = 0; i < m; ++i) {
+    guess_.v(i) = q_(part_.dependent[i]);
+    guess_.vd(i) = qd_(part_.dependent[i]);
+  }
+}
+
 void PartitionedSystem::after_step(double t, Eigen::VectorXd& y) {
   close(t, y);
+  remember_start(t);
   if (dyn_->m() == 0) return;
   // close() ended with an evaluation at the closed q_: its values are those of this state.
   const ConstraintValues& cv = cv_close_;
@@ -183,8 +197,10 @@ void PartitionedSystem::after_step(double t, Eigen::VectorXd& y) {
     }
     y.segment(nu_, nc) = q_.tail(nc);
     y.segment(nz_ + nu_, nc) = qd_.tail(nc);
-    for (int i = 0; i < dyn_->m(); ++i) guess_.v(i) = q_(part_.dependent[i]);
-    guess_.has_rate = false;
+    for (int i = 0; i < dyn_->m(); ++i) {  // the same start, in the new dependent coordinates
+      guess_.v(i) = q_(part_.dependent[i]);
+      guess_.vd(i) = qd_(part_.dependent[i]);
+    }
   }
 }
 
@@ -226,7 +242,7 @@ Eigen::VectorXd PartitionedSystem::initial_state(double t, const Eigen::VectorXd
   }
   set_partition(p);
   for (int i = 0; i < dyn_->m(); ++i) guess_.v(i) = q(part_.dependent[i]);
-  guess_.has_rate = false;
+  guess_.valid = false;
   Eigen::VectorXd y(2 * nz_);
   for (int i = 0; i < nu_; ++i) {
     y(i) = q(part_.independent[i]);
@@ -235,14 +251,13 @@ Eigen::VectorXd PartitionedSystem::initial_state(double t, const Eigen::VectorXd
   y.segment(nu_, nc) = q.tail(nc);
   y.segment(nz_ + nu_, nc) = qd.tail(nc);
   close(t, y);
+  remember_start(t);
   return y;
 }
 
 void PartitionedSystem::full_state(double t, const Eigen::VectorXd& y, Eigen::VectorXd& q,
                                    Eigen::VectorXd& qd) {
-  const Guess saved = guess_;
   close(t, y);
-  guess_ = saved;
   q = q_;
   qd = qd_;
 }

@@ -97,6 +97,7 @@ double constraint_scale(const ConstraintValues& cv) {
 }
 
 bool clearly_regular(SmallLu& jv_lu, const ConstraintValues& cv) {
+  if (jv_lu.size() == 0) return true;  // no dependent coordinates: nothing to invert
   // constraint_scale(cv) = max(sigma_max(J_b), max |J_e|) <= this, since
   // sigma_max <= the Frobenius norm.
   double scale_upper = cv.jb.size() > 0 ? cv.jb.norm() : 0.0;
@@ -344,7 +345,9 @@ void CoupledDynamics::solve_partitioned(double t, const Partition& p, Eigen::Vec
   p_b_.noalias() -= mb_ * p_base_;
   p_a_lu_.compute(p_a_);
   if (!(p_a_lu_.rcond_lower_cheap() >= kSingularRcond || p_a_lu_.rcond_lower() >= kSingularRcond)) {
-    // The exact lower bounds are the cheap screen; a full-pivoting LU decides.
+    // The lower bounds are the cheap screen; when both fail, Eigen's
+    // full-pivoting LU and its 1-norm condition estimate decide (the solve
+    // below still uses the partial-pivoting factors).
     Eigen::FullPivLU<Eigen::MatrixXd> full(p_a_);
     if (!(full.rcond() >= kSingularRcond)) throw_singular_mass_matrix(model_, bodies_, mb_, t);
   }

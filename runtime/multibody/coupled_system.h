@@ -241,16 +241,19 @@ class PartitionedSystem : public CoupledSystem {
   Partition part_;
   int nu_ = 0, nz_ = 0;
   int repartitions_ = 0, last_iters_ = 0;
-  // Newton's start for v: the v and v' of the last accepted closure at time t,
-  // extrapolated to the time asked for (error O(h^2) instead of O(h): one
-  // Newton iteration fewer per step).
+  // Newton's start for v: the v and v' of the last accepted state (after_step)
+  // at time t, extrapolated to the time asked for (error O(h^2) instead of
+  // O(h): one Newton iteration fewer per step) when that time is within a few
+  // accepted steps h of t.
   struct Guess {
     Eigen::VectorXd v, vd;
-    double t = 0.0;
-    bool has_rate = false;
+    double t = 0.0, h = 0.0;  // h: the last accepted step (0: none yet)
+    bool valid = false;       // v, vd, t describe an accepted state
   };
-  Guess guess_, guess_saved_;
-  Eigen::VectorXd q_, qd_, qdd_, lambda_, rhs_v_;
+  // The accepted, closed state q_, qd_ at t becomes the next Newton start.
+  void remember_start(double t);
+  Guess guess_;
+  Eigen::VectorXd q_, qd_, qdd_, lambda_;
   Eigen::MatrixXd jv_;
   SmallLu jv_lu_;  // of jv_ at the last closed state
   ConstraintValues cv_close_;  // of close(), at the last closed state (after_step reads it)

@@ -77,7 +77,8 @@ double SmallLu::sigma_min_lower_cheap() const {
   if (!nonsingular_) return 0.0;
   double power = 1.0;  // ||A||_F^(n-1); std::pow costs more than the LU at n = 3
   for (int i = 1; i < n; ++i) power *= norm_;
-  return det_abs_ / power;
+  // An underflowed or overflowed power would turn the bound into inf or 0/0: no bound then.
+  return power > 0.0 && std::isfinite(power) ? det_abs_ / power : 0.0;
 }
 
 double SmallLu::rcond_lower_cheap() const {
@@ -86,7 +87,7 @@ double SmallLu::rcond_lower_cheap() const {
   if (!nonsingular_) return 0.0;
   double power = 1.0;
   for (int i = 0; i < n; ++i) power *= norm_;
-  return det_abs_ / power;
+  return power > 0.0 && std::isfinite(power) ? det_abs_ / power : 0.0;
 }
 
 double SmallLu::inverse_norm() {

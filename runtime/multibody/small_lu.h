@@ -9,8 +9,10 @@
 // arithmetic. This is the textbook algorithm (Golub & Van Loan, Alg. 3.4.1,
 // partial pivoting) on a preallocated matrix.
 //
-// The inverse is cheap here, so the conditioning figures are exact bounds
-// instead of estimates:
+// The inverse is cheap here, so the conditioning figures are bounds instead
+// of estimates (rigorous for the matrix actually factored, which is A plus a
+// rounding error of ~n eps ||A||; the callers' 1e-13 thresholds leave ~1e3
+// ulps of margin):
 //   sigma_min(A) >= 1 / ||A^-1||_F,
 //   rcond_2(A) = 1 / (||A||_2 ||A^-1||_2) >= 1 / (||A||_F ||A^-1||_F).
 // A singular A (a zero or NaN pivot) makes both bounds 0, and a NaN elsewhere
@@ -49,11 +51,17 @@ class SmallLu {
 
   /// A lower bound of the smallest singular value: 1 / ||A^-1||_F (1 for an
   /// empty matrix, 0 for a singular one).
-  double sigma_min_lower() { return size() == 0 ? 1.0 : 1.0 / inverse_norm(); }
+  double sigma_min_lower() {
+    if (size() == 0) return 1.0;
+    return nonsingular_ ? 1.0 / inverse_norm() : 0.0;
+  }
 
   /// A lower bound of the reciprocal 2-norm condition number (1 for an empty
   /// matrix, 0 for a singular one): 1 / (||A||_F ||A^-1||_F).
-  double rcond_lower() { return size() == 0 ? 1.0 : 1.0 / (norm_ * inverse_norm()); }
+  double rcond_lower() {
+    if (size() == 0) return 1.0;
+    return nonsingular_ ? 1.0 / (norm_ * inverse_norm()) : 0.0;
+  }
 
  private:
   // In-place: x <- U^-1 L^-1 P x for one column of length n.

@@ -74,8 +74,8 @@ void expect_matches(const Case& c, void (*form)(const LowRankCorrection&, const 
   }
 }
 
-// Sizes around the AVX2 form's blocks (8 per dot-product step, 4 per update)
-// and the paper's beam (100 free DOFs, 19 kept modes).
+// Sizes around the AVX2 form's blocks (4 rows per step, modes in blocks of 4
+// then one by one) and the paper's beam (100 free DOFs, 19 kept modes).
 const int kSizes[][2] = {{1, 1}, {3, 2}, {4, 1}, {7, 3}, {8, 5}, {9, 4}, {100, 19}, {101, 19}, {100, 0}};
 
 TEST(LowRankKernel, EigenFormMatchesOracle) {
@@ -87,6 +87,14 @@ TEST(LowRankKernel, Avx2FormMatchesOracle) {
   if (!avx2_available()) GTEST_SKIP() << "no AVX2 + FMA on this processor or in this build";
   std::mt19937 rng(1905);
   for (const auto& nm : kSizes) expect_matches(random_case(rng, nm[0], nm[1]), subtract_low_rank_avx2, "avx2");
+}
+
+TEST(LowRankKernel, ShapeMismatchIsRejected) {
+  std::mt19937 rng(3);
+  Case c = random_case(rng, 10, 3);
+  EXPECT_NO_THROW(check_shape(c.op));
+  c.op.d_K.resize(2);
+  EXPECT_THROW(check_shape(c.op), std::invalid_argument);
 }
 
 TEST(LowRankKernel, DispatchMatchesOracle) {

@@ -104,6 +104,22 @@ TEST(SmallLu, SingularMatrixFailsEveryTest) {
   EXPECT_FALSE(lu.rcond_lower_cheap() >= 1e-300);
 }
 
+TEST(SmallLu, ZeroMatrixFailsAndIdentityPassesEveryTest) {
+  SmallLu lu;
+  lu.compute(Eigen::MatrixXd::Zero(3, 3));
+  EXPECT_EQ(lu.sigma_min_lower(), 0.0);
+  EXPECT_EQ(lu.rcond_lower(), 0.0);
+  EXPECT_EQ(lu.sigma_min_lower_cheap(), 0.0);
+  EXPECT_EQ(lu.rcond_lower_cheap(), 0.0);
+  // The identity: sigma_min = 1, ||A||_F = sqrt(3), so the pivot bounds are
+  // 1/3 and 1/sqrt(27), the inverse bounds 1/sqrt(3) and 1/3.
+  lu.compute(Eigen::MatrixXd::Identity(3, 3));
+  EXPECT_NEAR(lu.sigma_min_lower_cheap(), 1.0 / 3.0, 1e-15);
+  EXPECT_NEAR(lu.rcond_lower_cheap(), 1.0 / std::sqrt(27.0), 1e-15);
+  EXPECT_NEAR(lu.sigma_min_lower(), 1.0 / std::sqrt(3.0), 1e-15);
+  EXPECT_NEAR(lu.rcond_lower(), 1.0 / 3.0, 1e-15);
+}
+
 TEST(SmallLu, EmptyMatrixIsRegular) {
   SmallLu lu;
   lu.compute(Eigen::MatrixXd(0, 0));
