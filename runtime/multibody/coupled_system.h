@@ -99,9 +99,9 @@ double sigma_min(const Eigen::MatrixXd& a);
 /// constraint_scale(cv) (double precision with a margin of ~1e3 ulps).
 constexpr double kSingularConstraint = 1e-13;
 
-/// A cheap, exact sufficient test that J_v (factored as `jv_lu`) passes the
-/// singularity test: a lower bound of sigma_min(J_v) (the pivot bound of
-/// SmallLu, then 1 / ||J_v^-1||_F) against an upper bound of
+/// A cheap sufficient test (rigorous up to the rounding of the LU) that J_v,
+/// factored as `jv_lu`, passes the singularity test: a lower bound of
+/// sigma_min(J_v) (the pivot bound of SmallLu, then 1 / ||J_v^-1||_F) against an upper bound of
 /// constraint_scale(cv) (||J_b||_F, max |J_e|). When it returns false the
 /// caller runs the exact (SVD) test; it only saves the SVDs on the common,
 /// healthy path.
