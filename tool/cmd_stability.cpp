@@ -1,19 +1,26 @@
 // `mbfe stability MODEL.yaml [--json]`: the largest stable step of every
 // integrator for the original and the adjusted model (beam models; coupled
-// models through their linearised, partitioned system at the initial state).
+// models through their linearised, partitioned system at the initial state;
+// rigid-only models through their linearised ODE at the initial state).
+#include <cmath>
+#include <complex>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_args.h"
 #include "commands.h"
 #include "coupled_model.h"
 #include "damping/beam_model.h"
+#include "multibody/linearization.h"
 #include "multibody/multibody_errors.h"
+#include "multibody/rigid_system.h"
 #include "model/parse_model.h"
+#include "solver_cache.h"
 #include "stability/step_limits.h"
 
 namespace mbfe::tool {
@@ -28,7 +35,12 @@ original model (Rayleigh damping) and the adjusted one (each beam's
 `adjustment:` block; see docs/damping-adjustment.md). For a coupled model
 (bodies, beams and contacts) the eigenvalues are those of the linearised,
 partitioned system (eqs (16)-(17)) at the model's initial state (see
-docs/contacts.md).
+docs/contacts.md). For a rigid-only model (bodies, no beams) they are those
+of y' = f(t, y), y = [q; q'], f = [q'; M(q)^-1 (Q - F)], linearised at the
+initial state: a local estimate (the limits change as the motion moves away
+from that state), with no adjusted model. Away from an equilibrium some
+eigenvalues have Re > 0 (the motion itself leaves that state); they are
+counted and left out, the limits come from the others.
 
   forward_euler      |1 + h lambda| <= 1: h < -2 Re(lambda) / |lambda|^2
   rk4                |R(h lambda)| <= 1 along each eigenvalue's ray (2.785/|lambda| on the real axis)
@@ -50,6 +62,7 @@ Example:
   mbfe stability models/paper_beam.yaml
   mbfe stability models/paper_beam.yaml --json
   mbfe stability models/paper_platform.yaml
+  mbfe stability models/double_pendulum.yaml
 )";
 
 nlohmann::json limits_json(const runtime::StateSpectrum& spectrum) {
@@ -61,6 +74,43 @@ nlohmann::json limits_json(const runtime::StateSpectrum& spectrum) {
     else
       out[m.name] = lim.text();
   }
+  return out;
+}
+
+// The rigid model's ODE linearised at the initial state (model.initial).
+struct RigidSpectrum {
+  runtime::StateSpectrum limiting;  // eigenvalues with Re <= 0: what the limits come from
+  int growing = 0;                  // eigenvalues with Re > 0, left out
+};
+
+// Relative size of the real part that a conservative model's imaginary
+// eigenvalues pick up from the QR iteration and the differencing (~1e-16 to
+// ~1e-10 |lambda|); a damping ratio this small is no damping.
+constexpr double kConservativeRe = 1e-9;
+
+RigidSpectrum rigid_spectrum(const model::Model& m) {
+  const LoadedSolver solver = load_solver(m, /*quiet=*/true);
+  runtime::RigidSystem system(*solver.model, runtime::body_inertias(m));
+  const int n = system.num_coordinates();
+  Eigen::VectorXd y0(2 * n);
+  for (int i = 0; i < n; ++i) {
+    y0[i] = m.initial.q[i];
+    y0[n + i] = m.initial.qd[i];
+  }
+  // Away from an equilibrium (a pendulum released above its pivot) the
+  // linearisation has eigenvalues with Re > 0: the motion itself leaves the
+  // initial state, and every method follows that growth for small h. Absolute
+  // stability concerns the other eigenvalues, so only they set the limits.
+  RigidSpectrum out;
+  std::vector<std::complex<double>> limiting;
+  for (auto l : runtime::linearized_spectrum(system, 0.0, y0).eigenvalues) {
+    if (std::abs(l.real()) <= kConservativeRe * std::abs(l)) l = {0.0, l.imag()};
+    if (l.real() > 0.0)
+      ++out.growing;
+    else
+      limiting.push_back(l);
+  }
+  out.limiting = runtime::spectrum_from_eigenvalues(std::move(limiting));
   return out;
 }
 
@@ -82,20 +132,25 @@ int cmd_stability(const Args& args) {
                      " arguments (see --help)");
   const std::string& path = parsed.positional()[0];
   const model::Model m = model::load_model_file(path);
-  if (m.beams.empty()) {
-    std::cerr << "mbfe stability: " << path << ": model '" << m.name << "' has no beams"
-              << (m.bodies.empty() ? "" : " (the stability advisor handles beam and coupled models)") << "\n";
+  if (m.beams.empty() && m.bodies.empty()) {
+    std::cerr << "mbfe stability: " << path << ": model '" << m.name << "' has no bodies and no beams\n";
     return 2;
   }
   // Beam models: the beams' modal spectra. Coupled models (bodies + beams):
-  // the linearised, partitioned system at the initial state
-  // (runtime/multibody/linearization.h).
+  // the linearised, partitioned system at the initial state; rigid-only
+  // models: the linearised ODE there (runtime/multibody/linearization.h).
   const bool coupled = is_coupled(m);
+  const bool rigid = m.beams.empty();
   runtime::StateSpectrum original, adjusted;
   bool any_adjustment = false;
-  int dof = 0;
+  int dof = 0, growing = 0;
   try {
-    if (coupled) {
+    if (rigid) {
+      const RigidSpectrum rs = rigid_spectrum(m);
+      original = rs.limiting;
+      growing = rs.growing;
+      dof = static_cast<int>(m.bodies.size());
+    } else if (coupled) {
       for (const auto& b : m.beams)
         any_adjustment = any_adjustment || (b.adjustment.present && b.adjustment.policy != model::AdjustmentPolicy::kNone);
       original = coupled_spectrum(m, false);
@@ -114,6 +169,9 @@ int cmd_stability(const Args& args) {
   } catch (const runtime::ContactError& e) {
     std::cerr << "mbfe stability: " << path << ": at the initial state: " << e.what() << "\n";
     return 2;
+  } catch (const runtime::SingularMassMatrixError& e) {
+    std::cerr << "mbfe stability: " << path << ": at the initial state: " << e.what() << "\n";
+    return 2;
   }
 
   if (parsed.has("json")) {
@@ -124,12 +182,22 @@ int cmd_stability(const Args& args) {
     return 0;
   }
   auto fastest = [](const runtime::StateSpectrum& s) {
+    if (s.eigenvalues.empty()) return std::string("(none)");
     std::ostringstream o;
     o << std::setprecision(7) << s.eigenvalues.back().real();
     if (s.eigenvalues.back().imag() != 0.0) o << " +- " << std::abs(s.eigenvalues.back().imag()) << "i";
     return o.str();
   };
-  if (coupled)
+  if (rigid)
+    std::cout << "model '" << m.name << "': rigid, " << dof << " DOF, " << 2 * dof
+              << " state eigenvalues of the ODE linearised at the initial state\n"
+              << "  (a local estimate: the limits change as the motion moves away from that state; "
+                 "a rigid model has no damping adjustment)\n";
+  if (growing > 0)
+    std::cout << "  " << growing << " eigenvalue" << (growing == 1 ? " has" : "s have")
+              << " Re > 0: the motion leaves the initial state (not an equilibrium), and every "
+                 "method follows that growth; the limits are those of the others\n";
+  else if (coupled)
     std::cout << "model '" << m.name << "': linearised, partitioned coupled system at the initial state, " << 2 * dof
               << " state eigenvalues (" << dof << " independent coordinates)\n";
   else
@@ -137,7 +205,7 @@ int cmd_stability(const Args& args) {
   std::cout << "  original: fastest eigenvalue " << fastest(original) << " 1/s\n";
   if (any_adjustment)
     std::cout << "  adjusted: fastest eigenvalue " << fastest(adjusted) << " 1/s\n";
-  else
+  else if (!rigid)
     std::cout << "  (no beam has an adjustment block: only the original model)\n";
   std::cout << "\nlargest stable step\n";
   std::cout << std::left << std::setw(20) << "integrator" << std::setw(18) << "original"

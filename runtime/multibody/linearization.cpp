@@ -6,7 +6,7 @@
 
 namespace mbfe::runtime {
 
-Eigen::MatrixXd rhs_jacobian(PartitionedSystem& system, double t, const Eigen::VectorXd& y,
+Eigen::MatrixXd rhs_jacobian(OdeSystem& system, double t, const Eigen::VectorXd& y,
                              const LinearizationOptions& options) {
   const int n = system.size();
   const int nz = n / 2;
@@ -38,14 +38,9 @@ StateSpectrum dense_spectrum(const Eigen::MatrixXd& a) {
   return spectrum_from_eigenvalues(std::move(ev));
 }
 
-StateSpectrum linearized_spectrum(const std::shared_ptr<CoupledDynamics>& dynamics, double t,
-                                  const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+StateSpectrum linearized_spectrum(OdeSystem& system, double t, const Eigen::VectorXd& y,
                                   const LinearizationOptions& options) {
-  PartitionOptions po;
-  po.closure_tol = options.closure_tol;
-  PartitionedSystem system(dynamics, po);
-  const Eigen::VectorXd y0 = system.initial_state(t, q, qd);
-  Eigen::MatrixXd a = rhs_jacobian(system, t, y0, options);
+  Eigen::MatrixXd a = rhs_jacobian(system, t, y, options);
   // Balance [[0, I], [A21, A22]] by the similarity diag(I, sigma I) (rates
   // measured in units of sigma): [[0, sigma I], [A21 / sigma, A22]], with
   // sigma = sqrt(max |A21|) ~ the fastest stiffness frequency. The eigenvalues
@@ -59,6 +54,16 @@ StateSpectrum linearized_spectrum(const std::shared_ptr<CoupledDynamics>& dynami
     a.bottomLeftCorner(nz, nz) /= sigma;
   }
   return dense_spectrum(a);
+}
+
+StateSpectrum linearized_spectrum(const std::shared_ptr<CoupledDynamics>& dynamics, double t,
+                                  const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                  const LinearizationOptions& options) {
+  PartitionOptions po;
+  po.closure_tol = options.closure_tol;
+  PartitionedSystem system(dynamics, po);
+  const Eigen::VectorXd y0 = system.initial_state(t, q, qd);
+  return linearized_spectrum(system, t, y0, options);
 }
 
 }  // namespace mbfe::runtime

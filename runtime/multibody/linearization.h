@@ -13,12 +13,16 @@
 // q_c and q_c', so there the differences are exact up to round-off). The
 // eigenvalues of A (dense; the paper's platform has 394 states) go to the
 // stability advisor (stability/step_limits.h) like a beam's spectrum.
+//
+// A rigid-only model (RigidSystem, y = [q; q'], a = M(q)^-1 (Q - F)) has the
+// same block form and goes through the same OdeSystem overloads.
 #pragma once
 
 #include <Eigen/Core>
 #include <complex>
 #include <vector>
 
+#include "integrators/ode_system.h"
 #include "modal/state_spectrum.h"
 #include "multibody/coupled_system.h"
 
@@ -32,9 +36,11 @@ struct LinearizationOptions {
   double closure_tol = 1e-13;
 };
 
-/// A = df/dy of `system` at (t, y) (size x size). The system's Newton start is
-/// left where a closure at y puts it. @throws what system.rhs throws.
-Eigen::MatrixXd rhs_jacobian(PartitionedSystem& system, double t, const Eigen::VectorXd& y,
+/// A = df/dy of a second-order `system` (y = [z; z'], see ode_system.h) at
+/// (t, y) (size x size). A system with state between calls (the partitioned
+/// system's Newton start) is left where an evaluation at y puts it.
+/// @throws what system.rhs throws.
+Eigen::MatrixXd rhs_jacobian(OdeSystem& system, double t, const Eigen::VectorXd& y,
                              const LinearizationOptions& options = {});
 
 /// Eigenvalues of a dense real matrix, sorted and paired as StateSpectrum does;
@@ -42,9 +48,14 @@ Eigen::MatrixXd rhs_jacobian(PartitionedSystem& system, double t, const Eigen::V
 /// are set to zero.
 StateSpectrum dense_spectrum(const Eigen::MatrixXd& a);
 
+/// The spectrum of a second-order `system` linearised at (t, y): A from
+/// rhs_jacobian, balanced (rates rescaled by sqrt(max |da/dz|)) before the
+/// eigenvalues. @throws what system.rhs throws.
+StateSpectrum linearized_spectrum(OdeSystem& system, double t, const Eigen::VectorXd& y,
+                                  const LinearizationOptions& options = {});
+
 /// The spectrum of the linearised partitioned system at the consistent state
-/// y0 = system.initial_state(t, q, qd): A formed with options.closure_tol,
-/// balanced (rates rescaled by sqrt(max |da/dz|)) before the eigenvalues.
+/// y0 = system.initial_state(t, q, qd), A formed with options.closure_tol.
 StateSpectrum linearized_spectrum(const std::shared_ptr<CoupledDynamics>& dynamics, double t,
                                   const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                   const LinearizationOptions& options = {});
