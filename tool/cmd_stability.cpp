@@ -197,10 +197,10 @@ int cmd_stability(const Args& args) {
     std::cout << "  " << growing << " eigenvalue" << (growing == 1 ? " has" : "s have")
               << " Re > 0: the motion leaves the initial state (not an equilibrium), and every "
                  "method follows that growth; the limits are those of the others\n";
-  else if (coupled)
+  if (coupled)
     std::cout << "model '" << m.name << "': linearised, partitioned coupled system at the initial state, " << 2 * dof
               << " state eigenvalues (" << dof << " independent coordinates)\n";
-  else
+  else if (!rigid)
     std::cout << "model '" << m.name << "': " << dof << " DOF, " << 2 * dof << " state eigenvalues\n";
   std::cout << "  original: fastest eigenvalue " << fastest(original) << " 1/s\n";
   if (any_adjustment)

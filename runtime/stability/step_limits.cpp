@@ -19,6 +19,15 @@ constexpr double kCircleTol = 1e-9;
 constexpr double kRepeatTol = 1e-6;
 // Boundary-locus sampling of theta in [0, 2 pi) before bisection.
 constexpr int kLocusSamples = 8192;
+// Every locus passes through z = 0 (rho(1) = 0), and near it a multistep
+// method's boundary hugs the imaginary axis (AB2: Re z ~ -|z|^4 / 4), so along
+// an imaginary ray rounding makes "crossings" at |z| ~ 1e-5. Crossings closer
+// to the origin than this are taken as the origin itself.
+constexpr double kOriginTol = 1e-3;
+// The last interval, beyond every crossing, is unbounded: it is probed this far
+// out (|z|), where a weakly unstable root (AB2 on the imaginary axis) is no
+// longer within the root-condition tolerance.
+constexpr double kFarProbe = 1e3;
 
 bool root_condition(const LmmCoefficients& c, cplx z) {
   const int k = c.steps();
@@ -101,7 +110,7 @@ std::vector<double> crossings(const IntegratorSpec& m, cplx d) {
         }
       }
       const cplx w = locus(0.5 * (lo + hi));
-      if (std::isfinite(w.real()) && w.real() > 1e-12 && std::abs(w.imag()) <= 1e-6 * std::abs(w))
+      if (std::isfinite(w.real()) && w.real() > kOriginTol && std::abs(w.imag()) <= 1e-6 * std::abs(w))
         out.push_back(w.real());
     }
     prev = cur;
@@ -176,7 +185,7 @@ StepLimit stable_step(const IntegratorSpec& m, std::complex<double> lambda) {
   // Walk the intervals (0, s1), (s1, s2), ... while they are stable.
   double lo = 0.0;
   for (std::size_t i = 0; i <= cand.size(); ++i) {
-    const double hi = i < cand.size() ? cand[i] : (lo > 0.0 ? 4.0 * lo : 1e3);
+    const double hi = i < cand.size() ? cand[i] : std::max(4.0 * lo, kFarProbe);
     const double mid = i < cand.size() ? 0.5 * (lo + hi) : hi;
     if (!stable_at(m, mid * d)) {
       if (lo == 0.0) {

@@ -31,6 +31,15 @@ TEST(StepLimits, KnownValues) {
   EXPECT_EQ(stable_step(mid, cplx(-1, 0)).kind, StepLimit::Kind::kNone);  // Fig. 3
   EXPECT_NEAR(stable_step(mid, cplx(0, 2)).h, 0.5, 1e-7);
   EXPECT_NEAR(stable_step(ab2, cplx(-1, 0)).h, 1.0, 1e-7);
+  // AB2's principal root on the imaginary axis is 1 + (h omega)^4 / 4 + ...:
+  // an undamped mode grows at every step size, as under forward Euler. (The
+  // advisor used to call it "unconditional": rounding near the origin of the
+  // boundary locus looked like a crossing.)
+  EXPECT_EQ(stable_step(ab2, cplx(0, 1)).kind, StepLimit::Kind::kNone);
+  EXPECT_EQ(stable_step(ab2, cplx(0, 4.338)).kind, StepLimit::Kind::kNone);
+  // Slightly damped: the boundary Re z ~ -|z|^4 / 4 crosses the ray where
+  // s^3 ~ 4 * 1e-3, s ~ 0.159.
+  EXPECT_NEAR(stable_step(ab2, cplx(-1e-3, 1)).h, 0.1577, 1e-3);
   for (const char* a : {"backward_euler", "trapezoid", "bdf2", "generalized_alpha"}) {
     EXPECT_EQ(stable_step(parse_integrator(a), cplx(-1e8, 0)).kind, StepLimit::Kind::kUnconditional) << a;
     EXPECT_EQ(stable_step(parse_integrator(a), cplx(-1, 1e3)).kind, StepLimit::Kind::kUnconditional) << a;
