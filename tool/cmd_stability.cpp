@@ -4,6 +4,7 @@
 // rigid-only models through their linearised ODE at the initial state).
 #include <cmath>
 #include <complex>
+#include <algorithm>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -78,17 +79,7 @@ nlohmann::json limits_json(const runtime::StateSpectrum& spectrum) {
 }
 
 // The rigid model's ODE linearised at the initial state (model.initial).
-struct RigidSpectrum {
-  runtime::StateSpectrum limiting;  // eigenvalues with Re <= 0: what the limits come from
-  int growing = 0;                  // eigenvalues with Re > 0, left out
-};
-
-// Relative size of the real part that a conservative model's imaginary
-// eigenvalues pick up from the QR iteration and the differencing (~1e-16 to
-// ~1e-10 |lambda|); a damping ratio this small is no damping.
-constexpr double kConservativeRe = 1e-9;
-
-RigidSpectrum rigid_spectrum(const model::Model& m) {
+runtime::SplitSpectrum rigid_spectrum(const model::Model& m) {
   const LoadedSolver solver = load_solver(m, /*quiet=*/true);
   runtime::RigidSystem system(*solver.model, runtime::body_inertias(m));
   const int n = system.num_coordinates();
@@ -97,21 +88,7 @@ RigidSpectrum rigid_spectrum(const model::Model& m) {
     y0[i] = m.initial.q[i];
     y0[n + i] = m.initial.qd[i];
   }
-  // Away from an equilibrium (a pendulum released above its pivot) the
-  // linearisation has eigenvalues with Re > 0: the motion itself leaves the
-  // initial state, and every method follows that growth for small h. Absolute
-  // stability concerns the other eigenvalues, so only they set the limits.
-  RigidSpectrum out;
-  std::vector<std::complex<double>> limiting;
-  for (auto l : runtime::linearized_spectrum(system, 0.0, y0).eigenvalues) {
-    if (std::abs(l.real()) <= kConservativeRe * std::abs(l)) l = {0.0, l.imag()};
-    if (l.real() > 0.0)
-      ++out.growing;
-    else
-      limiting.push_back(l);
-  }
-  out.limiting = runtime::spectrum_from_eigenvalues(std::move(limiting));
-  return out;
+  return runtime::split_growing(runtime::linearized_spectrum(system, 0.0, y0));
 }
 
 std::string cell(const runtime::StepLimit& lim) {
@@ -146,16 +123,25 @@ int cmd_stability(const Args& args) {
   int dof = 0, growing = 0;
   try {
     if (rigid) {
-      const RigidSpectrum rs = rigid_spectrum(m);
+      const runtime::SplitSpectrum rs = rigid_spectrum(m);
       original = rs.limiting;
       growing = rs.growing;
       dof = static_cast<int>(m.bodies.size());
     } else if (coupled) {
       for (const auto& b : m.beams)
         any_adjustment = any_adjustment || (b.adjustment.present && b.adjustment.policy != model::AdjustmentPolicy::kNone);
-      original = coupled_spectrum(m, false);
-      if (any_adjustment) adjusted = coupled_spectrum(m, true);
-      dof = static_cast<int>(original.eigenvalues.size()) / 2;
+      // Linearised away from an equilibrium too (gravity on the bodies): the
+      // same split as for a rigid model.
+      const runtime::StateSpectrum full = coupled_spectrum(m, false);
+      dof = static_cast<int>(full.eigenvalues.size()) / 2;
+      const runtime::SplitSpectrum split = runtime::split_growing(full);
+      original = split.limiting;
+      growing = split.growing;
+      if (any_adjustment) {
+        const runtime::SplitSpectrum split_adjusted = runtime::split_growing(coupled_spectrum(m, true));
+        adjusted = split_adjusted.limiting;
+        growing = std::max(growing, split_adjusted.growing);
+      }
     } else {
       runtime::BeamModel beams = runtime::analyse_beams(m);
       original = beams.original;
@@ -193,15 +179,15 @@ int cmd_stability(const Args& args) {
               << " state eigenvalues of the ODE linearised at the initial state\n"
               << "  (a local estimate: the limits change as the motion moves away from that state; "
                  "a rigid model has no damping adjustment)\n";
-  if (growing > 0)
-    std::cout << "  " << growing << " eigenvalue" << (growing == 1 ? " has" : "s have")
-              << " Re > 0: the motion leaves the initial state (not an equilibrium), and every "
-                 "method follows that growth; the limits are those of the others\n";
   if (coupled)
     std::cout << "model '" << m.name << "': linearised, partitioned coupled system at the initial state, " << 2 * dof
               << " state eigenvalues (" << dof << " independent coordinates)\n";
   else if (!rigid)
     std::cout << "model '" << m.name << "': " << dof << " DOF, " << 2 * dof << " state eigenvalues\n";
+  if (growing > 0)
+    std::cout << "  " << growing << " eigenvalue" << (growing == 1 ? " has" : "s have")
+              << " Re > 0: the motion leaves the initial state (not an equilibrium), and every "
+                 "method follows that growth; the limits are those of the others\n";
   std::cout << "  original: fastest eigenvalue " << fastest(original) << " 1/s\n";
   if (any_adjustment)
     std::cout << "  adjusted: fastest eigenvalue " << fastest(adjusted) << " 1/s\n";

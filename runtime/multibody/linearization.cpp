@@ -66,4 +66,18 @@ StateSpectrum linearized_spectrum(const std::shared_ptr<CoupledDynamics>& dynami
   return linearized_spectrum(system, t, y0, options);
 }
 
+SplitSpectrum split_growing(const StateSpectrum& spectrum) {
+  SplitSpectrum out;
+  std::vector<std::complex<double>> limiting;
+  for (auto l : spectrum.eigenvalues) {
+    if (std::abs(l.real()) <= kRoundingRe * std::abs(l)) l = {0.0, l.imag()};
+    if (l.real() > 0.0)
+      ++out.growing;
+    else
+      limiting.push_back(l);
+  }
+  out.limiting = spectrum_from_eigenvalues(std::move(limiting));
+  return out;
+}
+
 }  // namespace mbfe::runtime

@@ -60,4 +60,22 @@ StateSpectrum linearized_spectrum(const std::shared_ptr<CoupledDynamics>& dynami
                                   const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                   const LinearizationOptions& options = {});
 
+/// A linearisation's spectrum split for the stability advisor. Away from an
+/// equilibrium (a pendulum released above its pivot, a platform under gravity)
+/// the linearisation has eigenvalues with Re > 0: the motion itself leaves the
+/// state, and every method follows that growth for small h. Absolute stability
+/// concerns the other eigenvalues, so only they set the limits.
+struct SplitSpectrum {
+  StateSpectrum limiting;  // Re <= 0 (after the rounding below)
+  int growing = 0;         // Re > 0, left out
+};
+
+/// Relative size of the real part that a conservative system's imaginary
+/// eigenvalues pick up from the QR iteration and the differencing (~1e-16 to
+/// ~1e-10 |lambda|); a damping ratio this small is no damping, and a growth
+/// rate this small is rounding: such real parts are set to 0.
+constexpr double kRoundingRe = 1e-9;
+
+SplitSpectrum split_growing(const StateSpectrum& spectrum);
+
 }  // namespace mbfe::runtime

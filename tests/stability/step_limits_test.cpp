@@ -8,6 +8,7 @@
 
 #include "integrators/integrator.h"
 #include "integrators/test_systems.h"
+#include "multibody/linearization.h"
 #include "stability/step_limits.h"
 
 namespace mbfe::runtime {
@@ -50,6 +51,26 @@ TEST(StepLimits, KnownValues) {
   const StepLimit s = stable_step(fe, spec);
   EXPECT_NEAR(s.h, std::min(0.2, 1.0 / 9.25), kLimitTol);
   EXPECT_EQ(s.critical, cplx(-0.5, 3));
+}
+
+TEST(StepLimits, GrowingModesAreSplitOffAndRoundingIsZeroed) {
+  // A linearisation away from equilibrium: one real growth (0.3), one
+  // undamped pair whose real part is rounding (+1e-12 of |lambda|), one damped pair.
+  const StateSpectrum spectrum =
+      spectrum_from_eigenvalues({{0.3, 0.0}, {5e-12, 5.0}, {5e-12, -5.0}, {-1.0, 2.0}, {-1.0, -2.0}});
+  const SplitSpectrum split = split_growing(spectrum);
+  EXPECT_EQ(split.growing, 1);
+  ASSERT_EQ(split.limiting.eigenvalues.size(), 4u);
+  for (const cplx& l : split.limiting.eigenvalues) EXPECT_LE(l.real(), 0.0);
+  // Without the rounding fix the +5e-12 pair would make every method "none";
+  // with it, RK4 is limited by the undamped pair (2 sqrt 2 / 5) and the
+  // A-stable methods are unconditional again.
+  const auto rk4 = parse_integrator("rk4");
+  EXPECT_NEAR(stable_step(rk4, split.limiting.eigenvalues).h, 2.0 * std::sqrt(2.0) / 5.0, 1e-9);
+  EXPECT_EQ(stable_step(parse_integrator("backward_euler"), split.limiting.eigenvalues).kind,
+            StepLimit::Kind::kUnconditional);
+  EXPECT_EQ(stable_step(parse_integrator("forward_euler"), split.limiting.eigenvalues).kind,
+            StepLimit::Kind::kNone);
 }
 
 /// max |y| over the last 200 of n steps of y' = lambda y from y0 = 1.
