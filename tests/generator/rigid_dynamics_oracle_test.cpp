@@ -153,7 +153,10 @@ TEST(GeneratedRigidDynamics, MatchesNumericalOracleOnRandomTrees) {
       }
       Eigen::MatrixXd M(n, n);
       Eigen::VectorXd F(n), Q(n);
-      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> M_rows(n, n);
+      // NaN first: an entry the kernel leaves unwritten fails the comparison.
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> M_rows =
+          Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Constant(
+              n, n, std::numeric_limits<double>::quiet_NaN());
       solver.model->mass_matrix(q.data(), M_rows.data());
       M = M_rows;
       solver.model->inertial_forces(q.data(), qd.data(), F.data());
