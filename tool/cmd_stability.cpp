@@ -39,9 +39,9 @@ partitioned system (eqs (16)-(17)) at the model's initial state (see
 docs/contacts.md). For a rigid-only model (bodies, no beams) they are those
 of y' = f(t, y), y = [q; q'], f = [q'; M(q)^-1 (Q - F)], linearised at the
 initial state: a local estimate (the limits change as the motion moves away
-from that state), with no adjusted model. Away from an equilibrium some
-eigenvalues have Re > 0 (the motion itself leaves that state); they are
-counted and left out, the limits come from the others.
+from that state), with no adjusted model. Away from an equilibrium (rigid or
+coupled models) some eigenvalues have Re > 0 (the motion itself leaves that
+state); they are counted and left out, the limits come from the others.
 
   forward_euler      |1 + h lambda| <= 1: h < -2 Re(lambda) / |lambda|^2
   rk4                |R(h lambda)| <= 1 along each eigenvalue's ray (2.785/|lambda| on the real axis)
