@@ -50,13 +50,13 @@
 #include <string>
 #include <vector>
 
-#include "damping/beam_model.h"
-#include "damping/beam_ode.h"
-#include "damping/modal_adjustment.h"
-#include "fem/beam_system.h"
-#include "integrators/integrator.h"
-#include "integrators/simulation_driver.h"
-#include "model/parse_model.h"
+#include "runtime/damping/beam_model.h"
+#include "runtime/damping/beam_ode.h"
+#include "runtime/damping/modal_adjustment.h"
+#include "runtime/fem/beam_system.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/integrators/simulation_driver.h"
+#include "frontend/parse_model.h"
 
 namespace {
 

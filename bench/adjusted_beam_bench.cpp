@@ -12,11 +12,11 @@
 // the caller's; `mbfe simulate` writes at most ~10,000 rows by default).
 #include <benchmark/benchmark.h>
 
-#include "damping/beam_model.h"
-#include "damping/beam_ode.h"
-#include "integrators/integrator.h"
-#include "integrators/simulation_driver.h"
-#include "model/parse_model.h"
+#include "runtime/damping/beam_model.h"
+#include "runtime/damping/beam_ode.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/integrators/simulation_driver.h"
+#include "frontend/parse_model.h"
 
 namespace {
 

@@ -6,9 +6,9 @@
 // Run: build/bin/beam_modal_bench
 #include <benchmark/benchmark.h>
 
-#include "fem/beam_system.h"
-#include "modal/modal_analysis.h"
-#include "modal/state_spectrum.h"
+#include "runtime/fem/beam_system.h"
+#include "runtime/modal/modal_analysis.h"
+#include "runtime/modal/state_spectrum.h"
 
 namespace {
 

@@ -9,10 +9,10 @@
 #include <random>
 #include <vector>
 
-#include "abi/mbfe_model_abi.h"
-#include "emit/generate_solver.h"
-#include "model/parse_model.h"
-#include "reference/double_pendulum.h"
+#include "runtime/abi/mbfe_model_abi.h"
+#include "generator/emit/generate_solver.h"
+#include "frontend/parse_model.h"
+#include "tests/reference/double_pendulum.h"
 
 extern "C" {
 const mbfe_model_v1* mbfe_model_double_pendulum(void);

@@ -27,20 +27,20 @@ command -v "$cxx" >/dev/null || { echo "fuzz: $cxx not found (MBFE_WITH_FUZZ=1 s
 version=$(sed -n 's/^project(mbfe VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
 flags=(-std=c++17 -O1 -g -fno-omit-frame-pointer
        -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
-       -DMBFE_GENERATOR_VERSION="\"${version}\"" -Igenerator -Itests/fuzz)
+       -DMBFE_GENERATOR_VERSION="\"${version}\"" -I.)
 read -r -a ginac_cflags <<<"$(pkg-config --cflags ginac)"
 read -r -a ginac_libs <<<"$(pkg-config --libs ginac)"
 flags+=("${ginac_cflags[@]}")
 
-sources=(generator/model/*.cpp generator/symbolic/*.cpp generator/emit/*.cpp tests/fuzz/model_fuzz.cpp)
+sources=(ir/*.cpp frontend/*.cpp generator/symbolic/*.cpp generator/emit/*.cpp tests/fuzz/model_fuzz.cpp)
 mkdir -p "$build_dir/obj" "$build_dir/corpus" "$build_dir/artifacts"
 
-# Incremental: an object is rebuilt when its source, any header of generator/
+# Incremental: an object is rebuilt when its source, any header of ir/, frontend/, generator/
 # or tests/fuzz/, or the flags changed.
 stamp="$build_dir/obj/flags"
 flag_text="$cxx ${flags[*]}"
 [[ -f "$stamp" && "$(cat "$stamp")" == "$flag_text" ]] || rm -f "$build_dir"/obj/*.o
-newest_header=$(ls -t generator/*/*.h tests/fuzz/*.h | head -n1)
+newest_header=$(ls -t ir/*.h frontend/*.h generator/*/*.h tests/fuzz/*.h | head -n1)
 to_build=()
 objects=()
 for src in "${sources[@]}"; do

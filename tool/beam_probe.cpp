@@ -1,8 +1,8 @@
-#include "beam_probe.h"
+#include "tool/beam_probe.h"
 
 #include <stdexcept>
 
-#include "cli_args.h"
+#include "tool/cli_args.h"
 
 namespace mbfe::tool {
 

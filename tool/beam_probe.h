@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "fem/beam_system.h"
-#include "model/model.h"
+#include "runtime/fem/beam_system.h"
+#include "ir/model.h"
 
 namespace mbfe::tool {
 

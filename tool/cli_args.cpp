@@ -1,4 +1,4 @@
-#include "cli_args.h"
+#include "tool/cli_args.h"
 
 #include <cctype>
 #include <cerrno>

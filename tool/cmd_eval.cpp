@@ -4,13 +4,13 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "cli_args.h"
-#include "commands.h"
-#include "fem/beam_system.h"
-#include "model/parse_model.h"
-#include "multibody/contact_constraints.h"
-#include "multibody/coupled_system.h"
-#include "solver_cache.h"
+#include "tool/cli_args.h"
+#include "tool/commands.h"
+#include "runtime/fem/beam_system.h"
+#include "frontend/parse_model.h"
+#include "runtime/multibody/contact_constraints.h"
+#include "runtime/multibody/coupled_system.h"
+#include "tool/solver_cache.h"
 
 namespace mbfe::tool {
 

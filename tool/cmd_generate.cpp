@@ -2,11 +2,11 @@
 #include <filesystem>
 #include <iostream>
 
-#include "cli_args.h"
-#include "commands.h"
-#include "emit/generate_solver.h"
-#include "file_util.h"
-#include "model/parse_model.h"
+#include "tool/cli_args.h"
+#include "tool/commands.h"
+#include "generator/emit/generate_solver.h"
+#include "tool/file_util.h"
+#include "frontend/parse_model.h"
 
 namespace mbfe::tool {
 

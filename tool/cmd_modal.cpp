@@ -8,15 +8,15 @@
 #include <string>
 #include <vector>
 
-#include "cli_args.h"
-#include "commands.h"
-#include "damping/modal_adjustment.h"
-#include "coupled_model.h"
-#include "modal_report.h"
-#include "multibody/multibody_errors.h"
-#include "model/parse_model.h"
-#include "plot_spectrum.h"
-#include "stability/step_limits.h"
+#include "tool/cli_args.h"
+#include "tool/commands.h"
+#include "runtime/damping/modal_adjustment.h"
+#include "tool/coupled_model.h"
+#include "tool/modal_report.h"
+#include "runtime/multibody/multibody_errors.h"
+#include "frontend/parse_model.h"
+#include "tool/plot_spectrum.h"
+#include "runtime/stability/step_limits.h"
 
 namespace mbfe::tool {
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "cli_args.h"
-#include "commands.h"
-#include "plot_gnuplot.h"
+#include "tool/cli_args.h"
+#include "tool/commands.h"
+#include "tool/plot_gnuplot.h"
 
 namespace mbfe::tool {
 

@@ -2,17 +2,17 @@
 #include <Eigen/Core>
 #include <iostream>
 
-#include "cli_args.h"
-#include "commands.h"
-#include "coupled_model.h"
-#include "csv_output.h"
-#include "integrators/integrator.h"
-#include "integrators/simulation_driver.h"
-#include "model/parse_model.h"
-#include "multibody/multibody_errors.h"
-#include "multibody/rigid_system.h"
-#include "simulate_options.h"
-#include "solver_cache.h"
+#include "tool/cli_args.h"
+#include "tool/commands.h"
+#include "tool/coupled_model.h"
+#include "tool/csv_output.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/integrators/simulation_driver.h"
+#include "frontend/parse_model.h"
+#include "runtime/multibody/multibody_errors.h"
+#include "runtime/multibody/rigid_system.h"
+#include "tool/simulate_options.h"
+#include "tool/solver_cache.h"
 
 namespace mbfe::tool {
 

@@ -13,16 +13,16 @@
 #include <string>
 #include <vector>
 
-#include "cli_args.h"
-#include "commands.h"
-#include "coupled_model.h"
-#include "damping/beam_model.h"
-#include "multibody/linearization.h"
-#include "multibody/multibody_errors.h"
-#include "multibody/rigid_system.h"
-#include "model/parse_model.h"
-#include "solver_cache.h"
-#include "stability/step_limits.h"
+#include "tool/cli_args.h"
+#include "tool/commands.h"
+#include "tool/coupled_model.h"
+#include "runtime/damping/beam_model.h"
+#include "runtime/multibody/linearization.h"
+#include "runtime/multibody/multibody_errors.h"
+#include "runtime/multibody/rigid_system.h"
+#include "frontend/parse_model.h"
+#include "tool/solver_cache.h"
+#include "runtime/stability/step_limits.h"
 
 namespace mbfe::tool {
 

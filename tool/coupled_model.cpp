@@ -1,11 +1,11 @@
-#include "coupled_model.h"
+#include "tool/coupled_model.h"
 
 #include <stdexcept>
 
-#include "cli_args.h"
-#include "damping/low_rank_kernel.h"
-#include "multibody/linearization.h"
-#include "multibody/rigid_system.h"
+#include "tool/cli_args.h"
+#include "runtime/damping/low_rank_kernel.h"
+#include "runtime/multibody/linearization.h"
+#include "runtime/multibody/rigid_system.h"
 
 namespace mbfe::tool {
 

@@ -10,12 +10,12 @@
 #include <optional>
 #include <vector>
 
-#include "damping/beam_model.h"
-#include "model/model.h"
-#include "modal/state_spectrum.h"
-#include "multibody/coupled_system.h"
-#include "simulate_options.h"
-#include "solver_cache.h"
+#include "runtime/damping/beam_model.h"
+#include "ir/model.h"
+#include "runtime/modal/state_spectrum.h"
+#include "runtime/multibody/coupled_system.h"
+#include "tool/simulate_options.h"
+#include "tool/solver_cache.h"
 
 namespace mbfe::tool {
 

@@ -1,10 +1,10 @@
-#include "csv_output.h"
+#include "tool/csv_output.h"
 
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
 
-#include "cli_args.h"
+#include "tool/cli_args.h"
 
 namespace mbfe::tool {
 

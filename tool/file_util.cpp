@@ -1,4 +1,4 @@
-#include "file_util.h"
+#include "tool/file_util.h"
 
 #include <openssl/evp.h>
 #include <sys/stat.h>

@@ -6,9 +6,9 @@
 #include <map>
 #include <string>
 
-#include "cli_args.h"
-#include "commands.h"
-#include "model/parse_model.h"
+#include "tool/cli_args.h"
+#include "tool/commands.h"
+#include "frontend/parse_model.h"
 
 namespace {
 

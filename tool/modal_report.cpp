@@ -1,4 +1,4 @@
-#include "modal_report.h"
+#include "tool/modal_report.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "modal/modal_analysis.h"
+#include "runtime/modal/modal_analysis.h"
 
 namespace mbfe::tool {
 

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "fem/beam_system.h"
-#include "modal/modal_basis.h"
-#include "modal/state_spectrum.h"
-#include "model/model.h"
+#include "runtime/fem/beam_system.h"
+#include "runtime/modal/modal_basis.h"
+#include "runtime/modal/state_spectrum.h"
+#include "ir/model.h"
 
 namespace mbfe::tool {
 

@@ -1,4 +1,4 @@
-#include "plot_gnuplot.h"
+#include "tool/plot_gnuplot.h"
 
 #include <spawn.h>
 #include <sys/wait.h>

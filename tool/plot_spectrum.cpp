@@ -1,4 +1,4 @@
-#include "plot_spectrum.h"
+#include "tool/plot_spectrum.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "plot_gnuplot.h"
+#include "tool/plot_gnuplot.h"
 
 namespace mbfe::tool {
 

@@ -14,14 +14,14 @@
 #include <string>
 #include <vector>
 
-#include "beam_probe.h"
-#include "cli_args.h"
-#include "csv_output.h"
-#include "damping/beam_model.h"
-#include "integrators/integrator.h"
-#include "integrators/simulation_driver.h"
-#include "simulate_options.h"
-#include "stability/step_limits.h"
+#include "tool/beam_probe.h"
+#include "tool/cli_args.h"
+#include "tool/csv_output.h"
+#include "runtime/damping/beam_model.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/integrators/simulation_driver.h"
+#include "tool/simulate_options.h"
+#include "runtime/stability/step_limits.h"
 
 namespace mbfe::tool {
 

@@ -17,16 +17,16 @@
 #include <string>
 #include <vector>
 
-#include "beam_probe.h"
-#include "cli_args.h"
-#include "coupled_model.h"
-#include "csv_output.h"
-#include "integrators/integrator.h"
-#include "integrators/simulation_driver.h"
-#include "multibody/linearization.h"
-#include "multibody/multibody_errors.h"
-#include "simulate_options.h"
-#include "stability/step_limits.h"
+#include "tool/beam_probe.h"
+#include "tool/cli_args.h"
+#include "tool/coupled_model.h"
+#include "tool/csv_output.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/integrators/simulation_driver.h"
+#include "runtime/multibody/linearization.h"
+#include "runtime/multibody/multibody_errors.h"
+#include "tool/simulate_options.h"
+#include "runtime/stability/step_limits.h"
 
 namespace mbfe::tool {
 

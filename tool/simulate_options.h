@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "model/model.h"
+#include "ir/model.h"
 
 namespace mbfe::tool {
 

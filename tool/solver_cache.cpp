@@ -1,4 +1,4 @@
-#include "solver_cache.h"
+#include "tool/solver_cache.h"
 
 #include <dlfcn.h>
 #include <sys/wait.h>
@@ -11,8 +11,8 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "emit/generate_solver.h"
-#include "file_util.h"
+#include "generator/emit/generate_solver.h"
+#include "tool/file_util.h"
 #include "jit_config.h"
 
 namespace mbfe::tool {

@@ -18,8 +18,8 @@
 
 #include <string>
 
-#include "mbfe_model_abi.h"
-#include "model/model.h"
+#include "runtime/abi/mbfe_model_abi.h"
+#include "ir/model.h"
 
 namespace mbfe::tool {
 

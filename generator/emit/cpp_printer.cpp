@@ -1,4 +1,4 @@
-#include "emit/cpp_printer.h"
+#include "generator/emit/cpp_printer.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,13 +1,13 @@
-#include "emit/generate_solver.h"
+#include "generator/emit/generate_solver.h"
 
 #include <sstream>
 #include <stdexcept>
 
-#include "emit/cpp_printer.h"
-#include "model/parse_model.h"
-#include "symbolic/contact_kinematics.h"
-#include "symbolic/cse.h"
-#include "symbolic/rigid_dynamics.h"
+#include "generator/emit/cpp_printer.h"
+#include "ir/model_error.h"
+#include "generator/symbolic/contact_kinematics.h"
+#include "generator/symbolic/cse.h"
+#include "generator/symbolic/rigid_dynamics.h"
 
 namespace mbfe::gen {
 

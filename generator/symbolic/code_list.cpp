@@ -1,4 +1,4 @@
-#include "symbolic/code_list.h"
+#include "generator/symbolic/code_list.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "symbolic/contact_kinematics.h"
+#include "generator/symbolic/contact_kinematics.h"
 
 #include <cmath>
 

@@ -17,8 +17,8 @@
 
 #include <vector>
 
-#include "model/model.h"
-#include "symbolic/code_list.h"
+#include "ir/model.h"
+#include "generator/symbolic/code_list.h"
 
 namespace mbfe::gen {
 

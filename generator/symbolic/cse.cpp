@@ -1,10 +1,10 @@
-#include "symbolic/cse.h"
+#include "generator/symbolic/cse.h"
 
 #include <algorithm>
 #include <unordered_map>
 #include <unordered_set>
 
-#include "emit/cpp_printer.h"
+#include "generator/emit/cpp_printer.h"
 
 namespace mbfe::gen {
 

@@ -7,7 +7,7 @@
 // in a structural order, so the result does not depend on memory addresses.
 #pragma once
 
-#include "symbolic/code_list.h"
+#include "generator/symbolic/code_list.h"
 
 namespace mbfe::gen {
 

@@ -1,4 +1,4 @@
-#include "symbolic/rigid_dynamics.h"
+#include "generator/symbolic/rigid_dynamics.h"
 
 #include <array>
 #include <string>

@@ -1,9 +1,9 @@
-#include "damping/beam_model.h"
+#include "runtime/damping/beam_model.h"
 
 #include <stdexcept>
 #include <string>
 
-#include "modal/modal_analysis.h"
+#include "runtime/modal/modal_analysis.h"
 
 namespace mbfe::runtime {
 

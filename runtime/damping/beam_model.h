@@ -7,12 +7,12 @@
 #include <memory>
 #include <vector>
 
-#include "damping/beam_ode.h"
-#include "damping/modal_adjustment.h"
-#include "fem/beam_system.h"
-#include "modal/modal_basis.h"
-#include "modal/state_spectrum.h"
-#include "model/model.h"
+#include "runtime/damping/beam_ode.h"
+#include "runtime/damping/modal_adjustment.h"
+#include "runtime/fem/beam_system.h"
+#include "runtime/modal/modal_basis.h"
+#include "runtime/modal/state_spectrum.h"
+#include "ir/model.h"
 
 namespace mbfe::runtime {
 

@@ -1,4 +1,4 @@
-#include "damping/beam_ode.h"
+#include "runtime/damping/beam_ode.h"
 
 #include <stdexcept>
 #include <string>

@@ -22,10 +22,10 @@
 #include <memory>
 #include <vector>
 
-#include "damping/modal_adjustment.h"
-#include "integrators/integrator.h"
-#include "modal/modal_basis.h"
-#include "modal/state_spectrum.h"
+#include "runtime/damping/modal_adjustment.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/modal/modal_basis.h"
+#include "runtime/modal/state_spectrum.h"
 
 namespace mbfe::runtime {
 

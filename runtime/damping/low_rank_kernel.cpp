@@ -1,4 +1,4 @@
-#include "damping/low_rank_kernel.h"
+#include "runtime/damping/low_rank_kernel.h"
 
 #include <cstddef>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "damping/modal_adjustment.h"
+#include "runtime/damping/modal_adjustment.h"
 
 #include <cmath>
 #include <stdexcept>

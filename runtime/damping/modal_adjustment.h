@@ -29,9 +29,9 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
-#include "modal/modal_basis.h"
-#include "modal/state_spectrum.h"
-#include "model/model.h"
+#include "runtime/modal/modal_basis.h"
+#include "runtime/modal/state_spectrum.h"
+#include "ir/model.h"
 
 namespace mbfe::runtime {
 

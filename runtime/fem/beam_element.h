@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 #include <memory>
 
-#include "model/model.h"
+#include "ir/model.h"
 
 namespace mbfe::runtime {
 

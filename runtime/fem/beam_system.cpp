@@ -1,14 +1,14 @@
 // Sparse assembly of one beam: element matrices -> M, K, C, P with the
 // support-fixed DOFs removed (contract order: nodes s = 0 .. L, [w, w']).
-#include "fem/beam_system.h"
+#include "runtime/fem/beam_system.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-#include "fem/beam_element.h"
-#include "fem/hermite_shape.h"
+#include "runtime/fem/beam_element.h"
+#include "runtime/fem/hermite_shape.h"
 
 namespace mbfe::runtime {
 

@@ -1,4 +1,4 @@
-#include "fem/hermite_beam_element.h"
+#include "runtime/fem/hermite_beam_element.h"
 
 #include <cmath>
 #include <stdexcept>

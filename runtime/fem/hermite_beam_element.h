@@ -2,7 +2,7 @@
 // (hermite_shape.h). DOFs [w1, w1', w2, w2'].
 #pragma once
 
-#include "fem/beam_element.h"
+#include "runtime/fem/beam_element.h"
 
 namespace mbfe::runtime {
 

@@ -1,4 +1,4 @@
-#include "integrators/integrator.h"
+#include "runtime/integrators/integrator.h"
 
 #include <cmath>
 #include <sstream>

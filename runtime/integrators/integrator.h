@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "integrators/ode_system.h"
+#include "runtime/integrators/ode_system.h"
 
 namespace mbfe::runtime {
 

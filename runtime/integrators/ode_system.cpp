@@ -1,4 +1,4 @@
-#include "integrators/ode_system.h"
+#include "runtime/integrators/ode_system.h"
 
 #include <Eigen/LU>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "integrators/simulation_driver.h"
+#include "runtime/integrators/simulation_driver.h"
 
 #include <unistd.h>
 

@@ -34,8 +34,8 @@
 #include <functional>
 #include <string>
 
-#include "integrators/integrator.h"
-#include "integrators/ode_system.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/integrators/ode_system.h"
 
 namespace mbfe::runtime {
 

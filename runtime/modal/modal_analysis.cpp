@@ -1,4 +1,4 @@
-#include "modal/modal_analysis.h"
+#include "runtime/modal/modal_analysis.h"
 
 #include <Eigen/Dense>
 #include <Eigen/OrderingMethods>

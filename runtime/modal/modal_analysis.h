@@ -15,8 +15,8 @@
 #include <Eigen/SparseCore>
 #include <optional>
 
-#include "fem/beam_system.h"
-#include "modal/modal_basis.h"
+#include "runtime/fem/beam_system.h"
+#include "runtime/modal/modal_basis.h"
 
 namespace mbfe::runtime {
 

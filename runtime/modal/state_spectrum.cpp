@@ -1,4 +1,4 @@
-#include "modal/state_spectrum.h"
+#include "runtime/modal/state_spectrum.h"
 
 #include <Eigen/Dense>
 #include <algorithm>

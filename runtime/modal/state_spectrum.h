@@ -15,7 +15,7 @@
 #include <complex>
 #include <vector>
 
-#include "modal/modal_basis.h"
+#include "runtime/modal/modal_basis.h"
 
 namespace mbfe::runtime {
 

@@ -1,11 +1,11 @@
-#include "multibody/contact_constraints.h"
+#include "runtime/multibody/contact_constraints.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-#include "multibody/multibody_errors.h"
+#include "runtime/multibody/multibody_errors.h"
 
 namespace mbfe::runtime {
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "abi/mbfe_model_abi.h"
+#include "runtime/abi/mbfe_model_abi.h"
 
 namespace mbfe::runtime {
 

@@ -17,8 +17,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "multibody/coupled_system.h"
-#include "multibody/multibody_errors.h"
+#include "runtime/multibody/coupled_system.h"
+#include "runtime/multibody/multibody_errors.h"
 
 namespace mbfe::runtime {
 

@@ -1,4 +1,4 @@
-#include "multibody/coupled_system.h"
+#include "runtime/multibody/coupled_system.h"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "multibody/multibody_errors.h"
+#include "runtime/multibody/multibody_errors.h"
 
 namespace mbfe::runtime {
 

@@ -32,12 +32,12 @@
 #include <string>
 #include <vector>
 
-#include "abi/mbfe_model_abi.h"
-#include "fem/beam_system.h"
-#include "integrators/ode_system.h"
-#include "multibody/contact_constraints.h"
-#include "multibody/rigid_system.h"
-#include "multibody/small_lu.h"
+#include "runtime/abi/mbfe_model_abi.h"
+#include "runtime/fem/beam_system.h"
+#include "runtime/integrators/ode_system.h"
+#include "runtime/multibody/contact_constraints.h"
+#include "runtime/multibody/rigid_system.h"
+#include "runtime/multibody/small_lu.h"
 
 namespace mbfe::runtime {
 

@@ -1,4 +1,4 @@
-#include "multibody/linearization.h"
+#include "runtime/multibody/linearization.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -22,9 +22,9 @@
 #include <complex>
 #include <vector>
 
-#include "integrators/ode_system.h"
-#include "modal/state_spectrum.h"
-#include "multibody/coupled_system.h"
+#include "runtime/integrators/ode_system.h"
+#include "runtime/modal/state_spectrum.h"
+#include "runtime/multibody/coupled_system.h"
 
 namespace mbfe::runtime {
 

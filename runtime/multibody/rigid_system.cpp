@@ -1,4 +1,4 @@
-#include "multibody/rigid_system.h"
+#include "runtime/multibody/rigid_system.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "multibody/multibody_errors.h"
+#include "runtime/multibody/multibody_errors.h"
 
 namespace mbfe::runtime {
 

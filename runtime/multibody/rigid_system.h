@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "abi/mbfe_model_abi.h"
-#include "integrators/ode_system.h"
-#include "model/model.h"
+#include "runtime/abi/mbfe_model_abi.h"
+#include "runtime/integrators/ode_system.h"
+#include "ir/model.h"
 
 namespace mbfe::runtime {
 

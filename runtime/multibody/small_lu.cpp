@@ -1,4 +1,4 @@
-#include "multibody/small_lu.h"
+#include "runtime/multibody/small_lu.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "stability/step_limits.h"
+#include "runtime/stability/step_limits.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

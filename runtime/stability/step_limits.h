@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "integrators/integrator.h"
+#include "runtime/integrators/integrator.h"
 
 namespace mbfe::runtime {
 

@@ -14,13 +14,13 @@
 #include <sstream>
 #include <string>
 
-#include "coupled/cli_run.h"
-#include "coupled_model.h"
-#include "integrators/integrator.h"
-#include "integrators/simulation_driver.h"
-#include "model/parse_model.h"
-#include "multibody/linearization.h"
-#include "stability/step_limits.h"
+#include "tests/coupled/cli_run.h"
+#include "tool/coupled_model.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/integrators/simulation_driver.h"
+#include "frontend/parse_model.h"
+#include "runtime/multibody/linearization.h"
+#include "runtime/stability/step_limits.h"
 
 namespace mbfe::coupled_test {
 namespace {

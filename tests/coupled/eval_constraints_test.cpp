@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "coupled/cli_run.h"
+#include "tests/coupled/cli_run.h"
 
 namespace mbfe::coupled_test {
 namespace {

@@ -20,10 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "damping/beam_model.h"
-#include "damping/modal_adjustment.h"
-#include "fem/beam_system.h"
-#include "model/parse_model.h"
+#include "runtime/damping/beam_model.h"
+#include "runtime/damping/modal_adjustment.h"
+#include "runtime/fem/beam_system.h"
+#include "frontend/parse_model.h"
 
 namespace mbfe::runtime {
 namespace {

@@ -1,6 +1,6 @@
 // The low-rank correction of an adjusted beam, both forms, against a plain
 // triple loop in long double (an independent oracle: no Eigen, no SIMD).
-#include "damping/low_rank_kernel.h"
+#include "runtime/damping/low_rank_kernel.h"
 
 #include <gtest/gtest.h>
 

@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "damping/beam_ode.h"
-#include "damping/modal_adjustment.h"
-#include "fem/beam_system.h"
-#include "integrators/integrator.h"
-#include "modal/modal_analysis.h"
+#include "runtime/damping/beam_ode.h"
+#include "runtime/damping/modal_adjustment.h"
+#include "runtime/fem/beam_system.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/modal/modal_analysis.h"
 
 namespace mbfe::runtime {
 namespace {

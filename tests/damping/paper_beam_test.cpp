@@ -6,13 +6,13 @@
 #include <cmath>
 #include <string>
 
-#include "damping/beam_model.h"
-#include "damping/beam_ode.h"
-#include "damping/modal_adjustment.h"
-#include "integrators/integrator.h"
-#include "integrators/simulation_driver.h"
-#include "model/parse_model.h"
-#include "stability/step_limits.h"
+#include "runtime/damping/beam_model.h"
+#include "runtime/damping/beam_ode.h"
+#include "runtime/damping/modal_adjustment.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/integrators/simulation_driver.h"
+#include "frontend/parse_model.h"
+#include "runtime/stability/step_limits.h"
 
 namespace mbfe::runtime {
 namespace {

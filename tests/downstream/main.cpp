@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "integrators/integrator.h"
-#include "multibody/rigid_system.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/multibody/rigid_system.h"
 
 extern "C" const mbfe_model_v1* mbfe_model_double_pendulum(void);
 

@@ -5,8 +5,8 @@
 #include <Eigen/SparseCholesky>
 #include <stdexcept>
 
-#include "fem/beam_fixtures.h"
-#include "fem/beam_system.h"
+#include "tests/fem/beam_fixtures.h"
+#include "runtime/fem/beam_system.h"
 
 namespace mbfe::runtime {
 namespace {

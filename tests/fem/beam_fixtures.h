@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "model/model.h"
+#include "ir/model.h"
 
 namespace mbfe::test {
 

@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "fem/hermite_beam_element.h"
-#include "fem/hermite_shape.h"
+#include "runtime/fem/hermite_beam_element.h"
+#include "runtime/fem/hermite_shape.h"
 
 namespace mbfe::runtime {
 namespace {

@@ -16,9 +16,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "emit/generate_solver.h"
-#include "model/model.h"
-#include "model/parse_model.h"
+#include "generator/emit/generate_solver.h"
+#include "ir/model.h"
+#include "frontend/parse_model.h"
+#include "ir/identifiers.h"
 
 namespace mbfe::fuzz {
 

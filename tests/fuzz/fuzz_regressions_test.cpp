@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "fuzz/fuzz_entry.h"
+#include "tests/fuzz/fuzz_entry.h"
 
 namespace {
 

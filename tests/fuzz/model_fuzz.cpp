@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "fuzz_entry.h"
+#include "tests/fuzz/fuzz_entry.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   mbfe::fuzz::fuzz_one_input(data, size);  // unexpected exceptions escape: a crash

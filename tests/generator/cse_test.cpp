@@ -4,9 +4,9 @@
 
 #include <random>
 
-#include "emit/cpp_printer.h"
-#include "symbolic/code_list.h"
-#include "symbolic/cse.h"
+#include "generator/emit/cpp_printer.h"
+#include "generator/symbolic/code_list.h"
+#include "generator/symbolic/cse.h"
 
 namespace mbfe::gen {
 namespace {

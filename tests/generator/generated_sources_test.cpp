@@ -9,8 +9,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "emit/generate_solver.h"
-#include "model/parse_model.h"
+#include "generator/emit/generate_solver.h"
+#include "frontend/parse_model.h"
 
 namespace mbfe {
 namespace {

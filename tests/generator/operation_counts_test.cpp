@@ -6,8 +6,8 @@
 #include <sstream>
 #include <string>
 
-#include "emit/generate_solver.h"
-#include "model/parse_model.h"
+#include "generator/emit/generate_solver.h"
+#include "frontend/parse_model.h"
 
 namespace mbfe {
 namespace {

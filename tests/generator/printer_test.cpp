@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <random>
 
-#include "emit/cpp_printer.h"
-#include "symbolic/code_list.h"
+#include "generator/emit/cpp_printer.h"
+#include "generator/symbolic/code_list.h"
 
 namespace mbfe::gen {
 namespace {

@@ -13,8 +13,8 @@
 #include <random>
 #include <sstream>
 
-#include "model/parse_model.h"
-#include "solver_cache.h"
+#include "frontend/parse_model.h"
+#include "tool/solver_cache.h"
 
 namespace mbfe {
 namespace {

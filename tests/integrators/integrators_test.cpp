@@ -7,9 +7,9 @@
 #include <csignal>
 #include <string>
 
-#include "integrators/integrator.h"
-#include "integrators/simulation_driver.h"
-#include "integrators/test_systems.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/integrators/simulation_driver.h"
+#include "tests/integrators/test_systems.h"
 
 namespace mbfe::runtime {
 namespace {

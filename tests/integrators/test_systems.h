@@ -5,7 +5,7 @@
 #include <cmath>
 #include <complex>
 
-#include "integrators/integrator.h"
+#include "runtime/integrators/integrator.h"
 
 namespace mbfe::testing {
 

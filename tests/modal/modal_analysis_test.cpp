@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
-#include "fem/beam_fixtures.h"
-#include "fem/beam_system.h"
-#include "modal/modal_analysis.h"
+#include "tests/fem/beam_fixtures.h"
+#include "runtime/fem/beam_system.h"
+#include "runtime/modal/modal_analysis.h"
 
 namespace mbfe::runtime {
 namespace {

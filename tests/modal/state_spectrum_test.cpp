@@ -6,10 +6,10 @@
 #include <cmath>
 #include <random>
 
-#include "fem/beam_fixtures.h"
-#include "fem/beam_system.h"
-#include "modal/modal_analysis.h"
-#include "modal/state_spectrum.h"
+#include "tests/fem/beam_fixtures.h"
+#include "runtime/fem/beam_system.h"
+#include "runtime/modal/modal_analysis.h"
+#include "runtime/modal/state_spectrum.h"
 
 namespace mbfe::runtime {
 namespace {

@@ -56,7 +56,7 @@
 #include <string>
 #include <vector>
 
-#include "model/parse_model.h"
+#include "frontend/parse_model.h"
 
 namespace mbfe::model {
 namespace {

@@ -1,5 +1,6 @@
 // The model front end: good files give the right IR, bad ones exact messages.
-#include "model/parse_model.h"
+#include "frontend/parse_model.h"
+#include "ir/identifiers.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +8,7 @@
 #include <iterator>
 #include <string>
 
-#include "model/sha256.h"
+#include "frontend/sha256.h"
 
 namespace mbfe::model {
 namespace {

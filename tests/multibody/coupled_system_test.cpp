@@ -5,7 +5,7 @@
 // - partitioned against augmented trajectories, |Phi| along the partitioned one;
 // - energy conservation with damping off (the contacts do no work);
 // - the named errors.
-#include "multibody/coupled_system.h"
+#include "runtime/multibody/coupled_system.h"
 
 #include <gtest/gtest.h>
 
@@ -14,9 +14,9 @@
 #include <memory>
 #include <random>
 
-#include "multibody/multibody_errors.h"
-#include "reference/double_pendulum_beam.h"
-#include "multibody/test_beam.h"
+#include "runtime/multibody/multibody_errors.h"
+#include "tests/reference/double_pendulum_beam.h"
+#include "tests/multibody/test_beam.h"
 
 namespace mbfe::runtime {
 namespace {

@@ -1,15 +1,15 @@
 // RigidSystem against oracles: a single pendulum written here as an ABI model
 // (closed-form acceleration and energy), and the hand-coded double pendulum.
-#include "multibody/rigid_system.h"
+#include "runtime/multibody/rigid_system.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "multibody/multibody_errors.h"
-#include "reference/double_pendulum.h"
-#include "reference/double_pendulum_beam.h"
+#include "runtime/multibody/multibody_errors.h"
+#include "tests/reference/double_pendulum.h"
+#include "tests/reference/double_pendulum_beam.h"
 
 namespace mbfe::runtime {
 namespace {

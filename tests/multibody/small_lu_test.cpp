@@ -1,5 +1,5 @@
 // SmallLu against Eigen's full-pivoting LU and SVD (independent algorithms).
-#include "multibody/small_lu.h"
+#include "runtime/multibody/small_lu.h"
 
 #include <gtest/gtest.h>
 

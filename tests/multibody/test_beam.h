@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "multibody/coupled_system.h"
+#include "runtime/multibody/coupled_system.h"
 
 namespace mbfe::testing {
 

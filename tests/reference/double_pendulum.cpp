@@ -17,7 +17,7 @@
 // Gravity: V = -m1 g.x1 - m2 g.x2, Q_abs = -dV/dth:
 //   Q_abs1 = (m1 c1 + m2 l1) g.n(th1),  Q_abs2 = m2 c2 g.n(th2),
 //   Q = T^T Q_abs: Q1 = Q_abs1 + Q_abs2, Q2 = Q_abs2.
-#include "reference/double_pendulum.h"
+#include "tests/reference/double_pendulum.h"
 
 #include <cmath>
 

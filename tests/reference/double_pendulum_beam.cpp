@@ -25,7 +25,7 @@
 // pin at s = a (constant): Phi1 = a - x_P(q), Phi2 = w(a, qe) - y_P(q);
 //   J_b = [-dx_P/dq; -dy_P/dq],  J_e = [0 0 0 0; N(xi(a))],
 //   gamma = -[-a_v.ex; -a_v.ey] = [a_v.ex; a_v.ey].
-#include "reference/double_pendulum_beam.h"
+#include "tests/reference/double_pendulum_beam.h"
 
 #include <cmath>
 

@@ -8,8 +8,8 @@
 
 #include <Eigen/Core>
 
-#include "abi/mbfe_model_abi.h"
-#include "reference/double_pendulum.h"
+#include "runtime/abi/mbfe_model_abi.h"
+#include "tests/reference/double_pendulum.h"
 
 namespace mbfe::reference {
 

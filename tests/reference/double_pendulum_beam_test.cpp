@@ -1,7 +1,7 @@
 // The hand-coded reference of models/double_pendulum_beam.yaml: its numbers
 // against the model file, and (when the generated solver is linked) the
 // generated M, F, Q and contact kernels against it at random states.
-#include "reference/double_pendulum_beam.h"
+#include "tests/reference/double_pendulum_beam.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <random>
 #include <string>
 
-#include "model/parse_model.h"
+#include "frontend/parse_model.h"
 
 #ifdef MBFE_HAVE_GENERATED_DOUBLE_PENDULUM_BEAM
 extern "C" const mbfe_model_v1* mbfe_model_double_pendulum_beam(void);

@@ -1,7 +1,7 @@
 // The generated solver of models/double_pendulum.yaml against the hand-coded
 // reference (tests/reference/double_pendulum.cpp), plus a self-check of the
 // reference (its F and Q against Lagrange's equations by finite differences).
-#include "reference/double_pendulum.h"
+#include "tests/reference/double_pendulum.h"
 
 #include <gtest/gtest.h>
 
@@ -11,10 +11,10 @@
 #include <functional>
 #include <random>
 
-#include "abi/mbfe_model_abi.h"
+#include "runtime/abi/mbfe_model_abi.h"
 
 #ifdef MBFE_HAVE_GENERATED_DOUBLE_PENDULUM
-#include "model/parse_model.h"
+#include "frontend/parse_model.h"
 extern "C" const mbfe_model_v1* mbfe_model_double_pendulum(void);
 #endif
 

@@ -7,7 +7,7 @@
 #include <regex>
 #include <string>
 
-#include "robustness/cli_process.h"
+#include "tests/robustness/cli_process.h"
 
 namespace mbfe::test {
 namespace {

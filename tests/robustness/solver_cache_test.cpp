@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "robustness/cli_process.h"
+#include "tests/robustness/cli_process.h"
 
 namespace mbfe::test {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <complex>
 
-#include "integrators/integrator.h"
-#include "stability/step_limits.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/stability/step_limits.h"
 
 namespace mbfe::runtime {
 namespace {

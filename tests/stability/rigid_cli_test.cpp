@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "../robustness/cli_process.h"
-#include "integrators/integrator.h"
-#include "stability/step_limits.h"
+#include "tests/robustness/cli_process.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/stability/step_limits.h"
 
 namespace mbfe::test {
 namespace {

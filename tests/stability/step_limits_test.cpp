@@ -6,10 +6,10 @@
 #include <complex>
 #include <random>
 
-#include "integrators/integrator.h"
-#include "integrators/test_systems.h"
-#include "multibody/linearization.h"
-#include "stability/step_limits.h"
+#include "runtime/integrators/integrator.h"
+#include "tests/integrators/test_systems.h"
+#include "runtime/multibody/linearization.h"
+#include "runtime/stability/step_limits.h"
 
 namespace mbfe::runtime {
 namespace {

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "abi/mbfe_model_abi.h"
+#include "runtime/abi/mbfe_model_abi.h"
 
 extern "C" const mbfe_model_v1* mbfe_model_double_pendulum(void);
 

@@ -1,4 +1,4 @@
-#include "model/yaml_reader.h"
+#include "frontend/yaml_reader.h"
 
 #include <charconv>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <sstream>
 #include <system_error>
 
-#include "model/identifiers.h"
+#include "ir/identifiers.h"
 
 namespace mbfe::model {
 namespace {

@@ -1,10 +1,9 @@
-#include "model/identifiers.h"
+#include "ir/identifiers.h"
 
 #include <algorithm>
 #include <iterator>
 #include <string_view>
 
-#include "model/parse_model.h"
 
 namespace mbfe::model {
 namespace {

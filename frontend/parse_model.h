@@ -1,28 +1,12 @@
 // Reading a model description file (YAML) into the validated model IR.
 #pragma once
 
-#include <stdexcept>
 #include <string>
 
-#include "model/model.h"
+#include "ir/model.h"
+#include "ir/model_error.h"
 
 namespace mbfe::model {
-
-/// Bad user input. what() is the full message, `file:line:col: what is wrong`;
-/// the command-line tool prints it and exits with status 2.
-class ModelError : public std::runtime_error {
- public:
-  ModelError(const std::string& file, SourceLoc loc, const std::string& message);
-  const std::string& file() const { return file_; }
-  SourceLoc loc() const { return loc_; }
-  /// The message without the `file:line:col: ` prefix.
-  const std::string& message() const { return message_; }
-
- private:
-  std::string file_;
-  SourceLoc loc_;
-  std::string message_;
-};
 
 /// Upper bounds that keep an absurd file from exhausting the machine.
 struct ParseLimits {
@@ -47,8 +31,5 @@ Model load_model_file(const std::string& path, const ParseLimits& limits = {});
 /// Same, from text already in memory; `display_path` is used in messages.
 Model parse_model_text(const std::string& text, const std::string& display_path,
                        const ParseLimits& limits = {});
-
-/// True for [A-Za-z_][A-Za-z0-9_]*.
-bool is_identifier(const std::string& name);
 
 }  // namespace mbfe::model

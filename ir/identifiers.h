@@ -5,6 +5,9 @@
 
 namespace mbfe::model {
 
+/// True for [A-Za-z_][A-Za-z0-9_]*.
+bool is_identifier(const std::string& name);
+
 /// True for C++ keywords and alternative operator tokens (`int`, `class`,
 /// `and`, ...), and for names the language reserves to the implementation
 /// (a double underscore anywhere, or an underscore then a capital letter).

@@ -1,4 +1,4 @@
-#include "model/sha256.h"
+#include "frontend/sha256.h"
 
 #include <openssl/evp.h>
 

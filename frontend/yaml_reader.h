@@ -12,8 +12,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "model/model.h"
-#include "model/parse_model.h"
+#include "ir/model.h"
+#include "frontend/parse_model.h"
 
 namespace mbfe::model {
 

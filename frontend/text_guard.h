@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "model/model.h"
+#include "ir/model.h"
 
 namespace mbfe::model {
 

@@ -6,7 +6,7 @@
 // it throws becomes a ModelError at its mark; the tree is walked section by
 // section against the schema of the model-file contracts (issues 2 to 5),
 // each value checked and each cross reference resolved to an index.
-#include "model/parse_model.h"
+#include "frontend/parse_model.h"
 
 #include <sys/stat.h>
 #include <yaml-cpp/yaml.h>
@@ -19,9 +19,9 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "model/sha256.h"
-#include "model/text_guard.h"
-#include "model/yaml_reader.h"
+#include "frontend/sha256.h"
+#include "frontend/text_guard.h"
+#include "frontend/yaml_reader.h"
 
 namespace mbfe::model {
 namespace {
@@ -587,14 +587,6 @@ std::string yaml_message(const YAML::Exception& error) {
 }
 
 }  // namespace
-
-ModelError::ModelError(const std::string& file, SourceLoc loc, const std::string& message)
-    : std::runtime_error(loc.line > 0 ? file + ":" + std::to_string(loc.line) + ":" +
-                                            std::to_string(loc.column) + ": " + message
-                                      : file + ": " + message),
-      file_(file),
-      loc_(loc),
-      message_(message) {}
 
 Model parse_model_text(const std::string& text, const std::string& display_path,
                        const ParseLimits& limits) {

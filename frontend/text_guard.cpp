@@ -1,4 +1,4 @@
-#include "model/text_guard.h"
+#include "frontend/text_guard.h"
 
 #include <cstdint>
 #include <vector>

@@ -1,6 +1,6 @@
 // The model IR: what a model description file says, validated and resolved.
 //
-// Parsing (parse_model.h) fills it; the symbolic generator and the runtime read
+// The YAML front end (frontend/parse_model.h) fills it; the symbolic generator and the runtime read
 // it. Nothing here knows YAML or GiNaC. Every name stored here has passed the
 // identifier check ([A-Za-z_][A-Za-z0-9_]*), every number is finite, and every
 // cross reference (parent, body of a load, beam of a contact) is resolved to an
@@ -11,13 +11,9 @@
 #include <string>
 #include <vector>
 
-namespace mbfe::model {
+#include "ir/source_loc.h"
 
-/// Position of a key or value in the model file; 1-based, 0 when unknown.
-struct SourceLoc {
-  int line = 0;
-  int column = 0;
-};
+namespace mbfe::model {
 
 using Vec2 = std::array<double, 2>;
 

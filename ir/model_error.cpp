@@ -1,0 +1,13 @@
+#include "ir/model_error.h"
+
+namespace mbfe::model {
+
+ModelError::ModelError(const std::string& file, SourceLoc loc, const std::string& message)
+    : std::runtime_error(loc.line > 0 ? file + ":" + std::to_string(loc.line) + ":" +
+                                            std::to_string(loc.column) + ": " + message
+                                      : file + ": " + message),
+      file_(file),
+      loc_(loc),
+      message_(message) {}
+
+}  // namespace mbfe::model
