@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Checks that every #include points down the layers (docs/architecture.md):
+#
+#   ir        <- frontend, generator, runtime      (the model IR: std + Eigen only)
+#   frontend  <- api, tool                         (YAML -> IR)
+#   generator <- api, tool                         (IR -> C++, GiNaC)
+#   runtime   <- api, tool                         (numerics: Eigen, Spectra)
+#   api       <- tool, python, examples            (the public C++ API)
+#   tool      <- nobody                            (the command line)
+#
+# and that the libraries of one layer stay out of the headers of another
+# (yaml-cpp only in frontend/, GiNaC only in generator/, OpenSSL only in
+# frontend/). Prints every violation as file:line: what is wrong, and exits 1
+# if there is one. Run by CTest (test `architecture_layers`) and by hand.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# Layer of a path -> the project folders it may include from.
+allowed_for() {
+  case "$1" in
+    ir) echo "ir" ;;
+    frontend) echo "ir frontend" ;;
+    generator) echo "ir generator" ;;
+    runtime) echo "ir runtime" ;;
+    api) echo "ir frontend generator runtime api" ;;
+    tool) echo "ir frontend generator runtime api tool" ;;
+    python) echo "ir frontend generator runtime api python" ;;
+    examples | bench) echo "ir frontend generator runtime api tests" ;;
+    tests) echo "ir frontend generator runtime api tests" ;;
+  esac
+}
+# Third-party headers (<prefix/...>) a layer must not include.
+forbidden_system_for() {
+  case "$1" in
+    ir) echo "yaml-cpp ginac cln openssl Spectra nlohmann" ;;
+    frontend) echo "ginac cln Spectra" ;;
+    generator) echo "yaml-cpp openssl Spectra" ;;
+    runtime) echo "yaml-cpp ginac cln openssl nlohmann" ;;
+    api) echo "yaml-cpp ginac cln openssl" ;;
+  esac
+}
+project_folders="ir frontend generator runtime api tool python examples bench tests"
+
+violations=0
+while IFS= read -r file; do
+  layer=${file%%/*}
+  allowed=$(allowed_for "$layer")
+  forbidden=$(forbidden_system_for "$layer")
+  # Tests of the command line's own pieces may reach into tool/.
+  [[ $file == tests/tool/* ]] && allowed="$allowed tool"
+  while IFS= read -r hit; do
+    line=${hit%%:*}
+    text=${hit#*:}
+    if [[ $text =~ \#include[[:space:]]*\"([^\"/]+)/ ]]; then
+      target=${BASH_REMATCH[1]}
+      [[ " $project_folders " == *" $target "* ]] || continue
+      if [[ " $allowed " != *" $target "* ]]; then
+        echo "$file:$line: $layer/ must not include $target/ ($text)"
+        violations=$((violations + 1))
+      fi
+    elif [[ $text =~ \#include[[:space:]]*\<([^/\>]+)/ ]]; then
+      target=${BASH_REMATCH[1]}
+      if [[ " $forbidden " == *" $target "* ]]; then
+        echo "$file:$line: $layer/ must not include <$target/...> ($text)"
+        violations=$((violations + 1))
+      fi
+    fi
+  done < <(grep -n '^[[:space:]]*#include' "$file" || true)
+done < <(git ls-files --cached --others --exclude-standard -- $(for f in $project_folders; do echo "$f/*.h" "$f/*.cpp" "$f/*.cc"; done) 2>/dev/null)
+
+if ((violations > 0)); then
+  echo "check-layers: $violations include(s) against the layering (see the comment at the top of $0)"
+  exit 1
+fi
+echo "check-layers: every include follows the layering"
