@@ -113,7 +113,7 @@ struct Setup {
 
 Setup make_setup() {
   Setup s;
-  const model::Model m = model::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml");
+  const ir::Model m = frontend::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml");
   s.beams = runtime::analyse_beams(m);
   const runtime::BeamPart& b = s.beams.beams.at(0);
   const runtime::BeamPointWeights pw = runtime::point_weights(b.system, 0.5 * b.system.length);
@@ -121,7 +121,7 @@ Setup make_setup() {
   for (int i = 0; i < 4; ++i)
     if (pw.free_index[i] >= 0) s.g += pw.w[i] * b.basis.phi.row(pw.free_index[i]).transpose();
   s.original = b.original;
-  model::Adjustment a = m.beams.at(0).adjustment;  // cap, 1e5, 0.1, 0.05
+  ir::Adjustment a = m.beams.at(0).adjustment;  // cap, 1e5, 0.1, 0.05
   s.adj_floor = runtime::adjust_modes(b.original, a);
   s.cap_floor = s.adj_floor.modes;
   a.zeta_min = 0.0;

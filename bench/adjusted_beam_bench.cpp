@@ -24,7 +24,7 @@ using namespace mbfe;
 
 const runtime::BeamModel& paper() {
   static const runtime::BeamModel b =
-      runtime::analyse_beams(model::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml"));
+      runtime::analyse_beams(frontend::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml"));
   return b;
 }
 
@@ -71,7 +71,7 @@ void BM_OriginalBeamNodal2em4(benchmark::State& state) {
 BENCHMARK(BM_OriginalBeamNodal2em4)->Unit(benchmark::kMillisecond);
 
 void BM_AnalyseAndAdjust(benchmark::State& state) {
-  const auto m = model::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml");
+  const auto m = frontend::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml");
   for (auto _ : state) benchmark::DoNotOptimize(runtime::analyse_beams(m));
 }
 BENCHMARK(BM_AnalyseAndAdjust)->Unit(benchmark::kMillisecond);

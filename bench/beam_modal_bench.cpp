@@ -14,8 +14,8 @@ namespace {
 
 using namespace mbfe;
 
-model::Beam paper_beam(int elements) {
-  model::Beam b;
+ir::Beam paper_beam(int elements) {
+  ir::Beam b;
   b.name = "beam1";
   b.length = 1.0;
   b.elements = elements;
@@ -26,14 +26,14 @@ model::Beam paper_beam(int elements) {
   b.density = 7860.0;
   b.rayleigh_alpha = 3.0e-3;
   b.rayleigh_beta = 1.5e-4;
-  b.supports = {{0.0, model::SupportType::kPinned, -1, {}},
-                {1.0, model::SupportType::kPinned, -1, {}}};
+  b.supports = {{0.0, ir::SupportType::kPinned, -1, {}},
+                {1.0, ir::SupportType::kPinned, -1, {}}};
   b.loads = {{0.5, -10.0, -1, {}}};
   return b;
 }
 
 void BM_PaperBeamAssemblyModalSpectrum(benchmark::State& state) {
-  const model::Beam b = paper_beam(50);
+  const ir::Beam b = paper_beam(50);
   for (auto _ : state) {
     const runtime::BeamSystem s = runtime::assemble_beam(b, {0.0, -9.81});
     const runtime::ModalBasis m = runtime::modal_analysis(s);
@@ -46,7 +46,7 @@ void BM_PaperBeamAssemblyModalSpectrum(benchmark::State& state) {
 BENCHMARK(BM_PaperBeamAssemblyModalSpectrum)->Unit(benchmark::kMillisecond);
 
 void BM_PaperBeamAssemblyOnly(benchmark::State& state) {
-  const model::Beam b = paper_beam(50);
+  const ir::Beam b = paper_beam(50);
   for (auto _ : state) benchmark::DoNotOptimize(runtime::assemble_beam(b, {0.0, -9.81}).P.data());
 }
 BENCHMARK(BM_PaperBeamAssemblyOnly)->Unit(benchmark::kMicrosecond);
@@ -54,7 +54,7 @@ BENCHMARK(BM_PaperBeamAssemblyOnly)->Unit(benchmark::kMicrosecond);
 // elements -> 2 (elements + 1) - 2 DOF: 50,000 elements = 100,000 DOF.
 void BM_LargeBeamLowest20Sparse(benchmark::State& state) {
   const int elements = static_cast<int>(state.range(0));
-  const model::Beam b = paper_beam(elements);
+  const ir::Beam b = paper_beam(elements);
   const runtime::BeamSystem s = runtime::assemble_beam(b, {0.0, -9.81});
   runtime::ModalOptions options;
   options.num_modes = 20;
@@ -71,7 +71,7 @@ BENCHMARK(BM_LargeBeamLowest20Sparse)
     ->Iterations(3);
 
 void BM_LargeBeamAssembly(benchmark::State& state) {
-  const model::Beam b = paper_beam(static_cast<int>(state.range(0)));
+  const ir::Beam b = paper_beam(static_cast<int>(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(runtime::assemble_beam(b, {0.0, -9.81}).P.data());
 }
 BENCHMARK(BM_LargeBeamAssembly)->Arg(50000)->Unit(benchmark::kMillisecond);

@@ -32,7 +32,7 @@ namespace {
 using namespace mbfe;
 
 struct Setup {
-  model::Model model;
+  ir::Model model;
   tool::CoupledModel cm;
   double h = 0.0;
 };
@@ -40,7 +40,7 @@ struct Setup {
 Setup& setup() {
   static Setup* s = [] {
     auto* out = new Setup;
-    out->model = model::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_platform.yaml");
+    out->model = frontend::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_platform.yaml");
     out->cm = tool::load_coupled(out->model, true, true);
     const auto spectrum = runtime::linearized_spectrum(out->cm.dynamics, 0.0, out->cm.q0, out->cm.qd0);
     out->h = 0.95 * runtime::stable_step(runtime::parse_integrator("forward_euler"), spectrum.eigenvalues).h;

@@ -99,8 +99,8 @@ const mbfe_model_v1* chain(int n) {
 // Derivation + CSE + emission of models/chain_N.yaml (no compilation).
 void BM_Chain_Generate(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  const mbfe::model::Model model =
-      mbfe::model::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/chain_" + std::to_string(n) + ".yaml");
+  const mbfe::ir::Model model =
+      mbfe::frontend::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/chain_" + std::to_string(n) + ".yaml");
   mbfe::gen::GeneratedSolver solver;
   for (auto _ : state) {
     solver = mbfe::gen::generate_solver(model);

@@ -23,7 +23,10 @@
 #include "frontend/text_guard.h"
 #include "frontend/yaml_reader.h"
 
-namespace mbfe::model {
+namespace mbfe::frontend {
+
+// The front end fills the IR: its types are used unqualified here.
+using namespace mbfe::ir;
 namespace {
 
 // A support or point load is "at a node" when within this fraction of the
@@ -648,4 +651,4 @@ Model load_model_file(const std::string& path, const ParseLimits& limits) {
   return parse_model_text(text, path, limits);
 }
 
-}  // namespace mbfe::model
+}  // namespace mbfe::frontend

@@ -6,7 +6,7 @@
 #include "ir/model.h"
 #include "ir/model_error.h"
 
-namespace mbfe::model {
+namespace mbfe::frontend {
 
 /// Upper bounds that keep an absurd file from exhausting the machine.
 struct ParseLimits {
@@ -24,12 +24,12 @@ struct ParseLimits {
   long max_yaml_values = 100000;
 };
 
-/// Reads and validates `path`. @throws ModelError on any problem, with the
+/// Reads and validates `path`. @throws ir::ModelError on any problem, with the
 /// position of the offending key or value.
-Model load_model_file(const std::string& path, const ParseLimits& limits = {});
+ir::Model load_model_file(const std::string& path, const ParseLimits& limits = {});
 
 /// Same, from text already in memory; `display_path` is used in messages.
-Model parse_model_text(const std::string& text, const std::string& display_path,
+ir::Model parse_model_text(const std::string& text, const std::string& display_path,
                        const ParseLimits& limits = {});
 
-}  // namespace mbfe::model
+}  // namespace mbfe::frontend

@@ -5,7 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
-namespace mbfe::model {
+namespace mbfe::frontend {
 
 std::string sha256_hex(const std::string& bytes) {
   // EVP is OpenSSL 3's supported interface; the low-level SHA256_* calls are
@@ -28,4 +28,4 @@ std::string sha256_hex(const std::string& bytes) {
   return hex;
 }
 
-}  // namespace mbfe::model
+}  // namespace mbfe::frontend

@@ -3,11 +3,11 @@
 
 #include <string>
 
-namespace mbfe::model {
+namespace mbfe::frontend {
 
 /// Lowercase hexadecimal SHA-256 digest (64 characters) of `bytes`.
 /// @throws std::runtime_error if OpenSSL fails (a bug or an out-of-memory
 /// condition, never bad user input).
 std::string sha256_hex(const std::string& bytes);
 
-}  // namespace mbfe::model
+}  // namespace mbfe::frontend

@@ -3,7 +3,10 @@
 #include <cstdint>
 #include <vector>
 
-namespace mbfe::model {
+namespace mbfe::frontend {
+
+// The front end fills the IR: its types are used unqualified here.
+using namespace mbfe::ir;
 namespace {
 
 std::string hex_byte(unsigned char byte) {
@@ -217,4 +220,4 @@ std::optional<SourceLoc> find_second_document(const std::string& text) {
   return std::nullopt;
 }
 
-}  // namespace mbfe::model
+}  // namespace mbfe::frontend

@@ -11,11 +11,11 @@
 
 #include "ir/model.h"
 
-namespace mbfe::model {
+namespace mbfe::frontend {
 
 /// Why a text must not be handed to the YAML parser, and where.
 struct TextProblem {
-  SourceLoc loc;  // 1-based line and byte column
+  ir::SourceLoc loc;  // 1-based line and byte column
   std::string message;
 };
 
@@ -39,6 +39,6 @@ std::optional<TextProblem> find_excess_structure(const std::string& text, int ma
 /// without end allocating memory on some inputs (a document that starts with
 /// `,`; yaml-cpp issue #1040, fixed after 0.7), so the parser loads one
 /// document with Load, which is safe, and asks this scan about the rest.
-std::optional<SourceLoc> find_second_document(const std::string& text);
+std::optional<ir::SourceLoc> find_second_document(const std::string& text);
 
-}  // namespace mbfe::model
+}  // namespace mbfe::frontend

@@ -8,7 +8,10 @@
 
 #include "ir/identifiers.h"
 
-namespace mbfe::model {
+namespace mbfe::frontend {
+
+// The front end fills the IR: its types are used unqualified here.
+using namespace mbfe::ir;
 namespace {
 
 // Long enough to recognise a value, short enough to keep a message on a line.
@@ -314,4 +317,4 @@ void MapView::fail(SourceLoc loc, const std::string& message) const {
   throw ModelError(file_, loc, message);
 }
 
-}  // namespace mbfe::model
+}  // namespace mbfe::frontend

@@ -15,10 +15,10 @@
 #include "ir/model.h"
 #include "frontend/parse_model.h"
 
-namespace mbfe::model {
+namespace mbfe::frontend {
 
 /// 1-based location of a node, or {0, 0} when yaml-cpp has none.
-SourceLoc location_of(const YAML::Node& node);
+ir::SourceLoc location_of(const YAML::Node& node);
 
 /// The value as written, shortened and with unprintable bytes escaped, for
 /// `(got ...)` in messages.
@@ -36,8 +36,8 @@ struct Field {
   std::string key;
   YAML::Node key_node;
   YAML::Node value;
-  SourceLoc key_loc;
-  SourceLoc value_loc;  // falls back to key_loc when yaml-cpp gives no mark
+  ir::SourceLoc key_loc;
+  ir::SourceLoc value_loc;  // falls back to key_loc when yaml-cpp gives no mark
 };
 
 /// A YAML map seen as the fields of one thing of the model, e.g. body
@@ -45,19 +45,19 @@ struct Field {
 /// the top level); `path` is prepended to key names in messages ("joint.").
 class MapView {
  public:
-  /// @throws ModelError if `node` is not a map, a key is not a plain string,
+  /// @throws ir::ModelError if `node` is not a map, a key is not a plain string,
   /// or a key appears twice.
   MapView(const std::string& file, const YAML::Node& node, std::string context, std::string path,
-          SourceLoc fallback_loc);
+          ir::SourceLoc fallback_loc);
 
-  /// @throws ModelError at the first key not in `allowed`.
+  /// @throws ir::ModelError at the first key not in `allowed`.
   void allow(std::initializer_list<const char*> allowed) const;
 
   const Field* find(const std::string& key) const;
-  /// @throws ModelError at the map if `key` is missing.
+  /// @throws ir::ModelError at the map if `key` is missing.
   const Field& require(const std::string& key) const;
   const std::vector<Field>& fields() const { return fields_; }
-  SourceLoc loc() const { return loc_; }
+  ir::SourceLoc loc() const { return loc_; }
 
   /// A nested map under `field`, with `path` extended by the field's key.
   MapView sub(const Field& field) const;
@@ -67,7 +67,7 @@ class MapView {
   double number_at_least(const Field& field, double minimum) const;  // >= minimum
   double positive(const Field& field) const;                         // > 0
   long long whole_number(const Field& field) const;
-  Vec2 vec2(const Field& field) const;
+  ir::Vec2 vec2(const Field& field) const;
   std::string text(const Field& field) const;  // any scalar
   /// A name that may reach generated C++: identifier, not a keyword, at most
   /// `max_length` characters.
@@ -79,7 +79,7 @@ class MapView {
 
   // Optional fields with defaults.
   double number_or(const std::string& key, double fallback) const;
-  Vec2 vec2_or(const std::string& key, Vec2 fallback) const;
+  ir::Vec2 vec2_or(const std::string& key, ir::Vec2 fallback) const;
 
   /// "<context>: <message>", or the message alone at the top level.
   std::string prefixed(const std::string& message) const;
@@ -88,14 +88,14 @@ class MapView {
   /// "in body 'link1' joint" / "at the top level", for key errors.
   std::string where() const;
 
-  [[noreturn]] void fail(SourceLoc loc, const std::string& message) const;
+  [[noreturn]] void fail(ir::SourceLoc loc, const std::string& message) const;
 
  private:
   std::string file_;
   YAML::Node node_;
   std::string context_;
   std::string path_;
-  SourceLoc loc_;
+  ir::SourceLoc loc_;
   std::vector<Field> fields_;
   std::unordered_map<std::string, std::size_t> index_;  // key -> position in fields_
 };
@@ -112,4 +112,4 @@ std::string item_context(const YAML::Node& item, const std::string& kind, std::s
 /// otherwise why not.
 std::string identifier_problem(const std::string& name, std::size_t max_length);
 
-}  // namespace mbfe::model
+}  // namespace mbfe::frontend

@@ -5,7 +5,7 @@
 #include <string_view>
 
 
-namespace mbfe::model {
+namespace mbfe::ir {
 namespace {
 
 // C++20 keywords, the alternative tokens, and identifiers with special meaning
@@ -55,4 +55,4 @@ bool is_reserved_in_cpp(const std::string& name) {
   return name.size() >= 2 && name[0] == '_' && name[1] >= 'A' && name[1] <= 'Z';
 }
 
-}  // namespace mbfe::model
+}  // namespace mbfe::ir

@@ -3,7 +3,7 @@
 
 #include <string>
 
-namespace mbfe::model {
+namespace mbfe::ir {
 
 /// True for [A-Za-z_][A-Za-z0-9_]*.
 bool is_identifier(const std::string& name);
@@ -13,4 +13,4 @@ bool is_identifier(const std::string& name);
 /// (a double underscore anywhere, or an underscore then a capital letter).
 bool is_reserved_in_cpp(const std::string& name);
 
-}  // namespace mbfe::model
+}  // namespace mbfe::ir

@@ -13,7 +13,7 @@
 
 #include "ir/source_loc.h"
 
-namespace mbfe::model {
+namespace mbfe::ir {
 
 using Vec2 = std::array<double, 2>;
 
@@ -155,4 +155,4 @@ struct Model {
   Simulation simulation;
 };
 
-}  // namespace mbfe::model
+}  // namespace mbfe::ir

@@ -1,6 +1,6 @@
 #include "ir/model_error.h"
 
-namespace mbfe::model {
+namespace mbfe::ir {
 
 ModelError::ModelError(const std::string& file, SourceLoc loc, const std::string& message)
     : std::runtime_error(loc.line > 0 ? file + ":" + std::to_string(loc.line) + ":" +
@@ -10,4 +10,4 @@ ModelError::ModelError(const std::string& file, SourceLoc loc, const std::string
       loc_(loc),
       message_(message) {}
 
-}  // namespace mbfe::model
+}  // namespace mbfe::ir

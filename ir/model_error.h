@@ -6,7 +6,7 @@
 
 #include "ir/source_loc.h"
 
-namespace mbfe::model {
+namespace mbfe::ir {
 
 /// Bad user input. what() is the full message, `file:line:col: what is wrong`
 /// (`file: what is wrong` when the position is unknown); the command-line tool
@@ -25,4 +25,4 @@ class ModelError : public std::runtime_error {
   std::string message_;
 };
 
-}  // namespace mbfe::model
+}  // namespace mbfe::ir

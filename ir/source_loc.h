@@ -1,7 +1,7 @@
 // Where something was written in a model file, for error messages.
 #pragma once
 
-namespace mbfe::model {
+namespace mbfe::ir {
 
 /// Position of a key or value in the model file; 1-based, 0 when unknown.
 struct SourceLoc {
@@ -9,4 +9,4 @@ struct SourceLoc {
   int column = 0;
 };
 
-}  // namespace mbfe::model
+}  // namespace mbfe::ir

@@ -6,7 +6,7 @@
 
 namespace mbfe::tool {
 
-void locate_probe(const std::string& spec, const model::Model& model, int& beam, double& s) {
+void locate_probe(const std::string& spec, const ir::Model& model, int& beam, double& s) {
   const auto at = spec.find('@');
   if (at == std::string::npos)
     throw UsageError("--probe '" + spec + "': expected BEAM@S (S in m along the beam), e.g. beam1@0.5");

@@ -19,18 +19,18 @@ struct BeamProbe {
 /// Parses each BEAM@S. `beam_system(i)` gives the assembled system of beam i.
 /// @throws UsageError naming the probe for a bad form, an unknown beam or S off the beam.
 template <typename BeamSystemOf>
-std::vector<BeamProbe> parse_beam_probes(const std::vector<std::string>& specs, const model::Model& model,
+std::vector<BeamProbe> parse_beam_probes(const std::vector<std::string>& specs, const ir::Model& model,
                                          BeamSystemOf beam_system);
 
 /// The beam and position of one BEAM@S, validated against the model.
 /// @throws UsageError.
-void locate_probe(const std::string& spec, const model::Model& model, int& beam, double& s);
+void locate_probe(const std::string& spec, const ir::Model& model, int& beam, double& s);
 
 /// Point weights of `s` on `system`, as a UsageError naming `spec` when s is off the beam.
 runtime::BeamPointWeights probe_weights(const std::string& spec, const runtime::BeamSystem& system, double s);
 
 template <typename BeamSystemOf>
-std::vector<BeamProbe> parse_beam_probes(const std::vector<std::string>& specs, const model::Model& model,
+std::vector<BeamProbe> parse_beam_probes(const std::vector<std::string>& specs, const ir::Model& model,
                                          BeamSystemOf beam_system) {
   std::vector<BeamProbe> out;
   for (const std::string& spec : specs) {

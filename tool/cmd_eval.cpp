@@ -59,7 +59,7 @@ int cmd_eval(const Args& args) {
     return 0;
   }
   if (parsed.positional().size() != 1) throw UsageError("expected one model file (see --help)");
-  const model::Model model = model::load_model_file(parsed.positional()[0]);
+  const ir::Model model = frontend::load_model_file(parsed.positional()[0]);
   if (model.bodies.empty())
     throw UsageError("model '" + model.name + "' has no bodies: nothing to evaluate (try mbfe modal)");
   if ((parsed.has("qc") || parsed.has("qcd")) && model.contacts.empty())
@@ -83,7 +83,7 @@ int cmd_eval(const Args& args) {
   out["Q"] = Q;
   if (!model.contacts.empty()) {
     std::vector<runtime::BeamMesh> meshes;
-    for (const model::Beam& b : model.beams) meshes.push_back(runtime::beam_mesh(runtime::assemble_beam(b, model.gravity)));
+    for (const ir::Beam& b : model.beams) meshes.push_back(runtime::beam_mesh(runtime::assemble_beam(b, model.gravity)));
     const runtime::ContactConstraints cc(*solver.model, meshes);
     const int nc = cc.num_beam_dofs();
     const std::vector<double> qc = beam_vector(parsed, "qc", nc);

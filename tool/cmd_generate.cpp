@@ -34,7 +34,7 @@ int cmd_generate(const Args& args) {
   const auto out = parsed.value("o") ? parsed.value("o") : parsed.value("output");
   if (!out) throw UsageError("missing -o DIR (see --help)");
 
-  const model::Model model = model::load_model_file(parsed.positional()[0]);
+  const ir::Model model = frontend::load_model_file(parsed.positional()[0]);
   if (model.bodies.empty())
     throw UsageError("model '" + model.name + "' has no bodies: beams need no generated code (try mbfe modal)");
   const gen::GeneratedSolver solver = gen::generate_solver(model);  // everything in memory first

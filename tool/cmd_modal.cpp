@@ -65,15 +65,15 @@ Example:
   mbfe modal models/paper_beam.yaml --plot spectrum.png --step 1.4e-5
 )";
 
-const char* policy_name(model::AdjustmentPolicy p) {
+const char* policy_name(ir::AdjustmentPolicy p) {
   switch (p) {
-    case model::AdjustmentPolicy::kNone:
+    case ir::AdjustmentPolicy::kNone:
       return "none";
-    case model::AdjustmentPolicy::kCap:
+    case ir::AdjustmentPolicy::kCap:
       return "cap";
-    case model::AdjustmentPolicy::kPaperEq25:
+    case ir::AdjustmentPolicy::kPaperEq25:
       return "paper_eq25";
-    case model::AdjustmentPolicy::kKeepSlow:
+    case ir::AdjustmentPolicy::kKeepSlow:
       return "keep_slow";
   }
   return "?";
@@ -86,9 +86,9 @@ struct AdjustedResult {
   runtime::StateSpectrum spectrum;
 };
 
-AdjustedResult adjust_beam(const model::Beam& beam, const BeamModalResult& r) {
+AdjustedResult adjust_beam(const ir::Beam& beam, const BeamModalResult& r) {
   AdjustedResult out;
-  if (!beam.adjustment.present || beam.adjustment.policy == model::AdjustmentPolicy::kNone) return out;
+  if (!beam.adjustment.present || beam.adjustment.policy == ir::AdjustmentPolicy::kNone) return out;
   out.present = true;
   const auto original = runtime::rayleigh_modes(r.basis.omega, beam.rayleigh_alpha, beam.rayleigh_beta);
   try {
@@ -113,7 +113,7 @@ nlohmann::json beam_json(const BeamModalResult& r) {
   return beam;
 }
 
-void add_adjusted_json(nlohmann::json& beam, const model::Beam& b, const AdjustedResult& a) {
+void add_adjusted_json(nlohmann::json& beam, const ir::Beam& b, const AdjustedResult& a) {
   if (!a.present) return;
   nlohmann::json block = spectrum_json(a.spectrum);
   block["policy"] = policy_name(b.adjustment.policy);
@@ -125,7 +125,7 @@ void add_adjusted_json(nlohmann::json& beam, const model::Beam& b, const Adjuste
   beam["adjusted"] = std::move(block);
 }
 
-void print_adjusted_text(std::ostream& out, const model::Beam& b, const BeamModalResult& r,
+void print_adjusted_text(std::ostream& out, const ir::Beam& b, const BeamModalResult& r,
                          const AdjustedResult& a, bool all) {
   if (!a.present) return;
   const int dof = static_cast<int>(r.system.M.rows());
@@ -150,7 +150,7 @@ void print_adjusted_text(std::ostream& out, const model::Beam& b, const BeamModa
   }
 }
 
-void print_beam_text(std::ostream& out, const model::Beam& b, const BeamModalResult& r, const AdjustedResult& a,
+void print_beam_text(std::ostream& out, const ir::Beam& b, const BeamModalResult& r, const AdjustedResult& a,
                      bool all) {
   const int dof = static_cast<int>(r.system.M.rows());
   out << "beam '" << r.name << "': " << dof << " DOF, Rayleigh alpha = " << r.system.rayleigh_alpha
@@ -188,20 +188,20 @@ int cmd_modal(const Args& args) {
     options.sparse_modes = static_cast<int>(*k);
   }
   const std::string& path = parsed.positional()[0];
-  const model::Model m = model::load_model_file(path);
+  const ir::Model m = frontend::load_model_file(path);
   if (m.beams.empty()) {
     std::cerr << "mbfe modal: " << path << ": model '" << m.name
               << "' has no beams; modal analysis needs at least one (see `beams:`)\n";
     return 2;
   }
-  std::vector<const model::Beam*> chosen;
+  std::vector<const ir::Beam*> chosen;
   const auto beam_name = parsed.value("beam");
-  for (const model::Beam& b : m.beams) {
+  for (const ir::Beam& b : m.beams) {
     if (!beam_name || b.name == *beam_name) chosen.push_back(&b);
   }
   if (chosen.empty()) {
     std::string names;
-    for (const model::Beam& b : m.beams) names += (names.empty() ? "" : ", ") + b.name;
+    for (const ir::Beam& b : m.beams) names += (names.empty() ? "" : ", ") + b.name;
     throw UsageError("--beam: no beam named '" + *beam_name + "' in " + path + " (beams: " +
                      names + ")");
   }
@@ -209,7 +209,7 @@ int cmd_modal(const Args& args) {
   std::vector<BeamModalResult> results;
   std::vector<AdjustedResult> adjusted;
   try {
-    for (const model::Beam* b : chosen) {
+    for (const ir::Beam* b : chosen) {
       results.push_back(analyse_beam(*b, m.gravity, options));
       adjusted.push_back(adjust_beam(*b, results.back()));
     }
@@ -245,9 +245,9 @@ int cmd_modal(const Args& args) {
   runtime::StateSpectrum coupled_original, coupled_adjusted;
   bool coupled_any_adjustment = false;
   if (coupled) {
-    for (const model::Beam& b : m.beams)
+    for (const ir::Beam& b : m.beams)
       coupled_any_adjustment =
-          coupled_any_adjustment || (b.adjustment.present && b.adjustment.policy != model::AdjustmentPolicy::kNone);
+          coupled_any_adjustment || (b.adjustment.present && b.adjustment.policy != ir::AdjustmentPolicy::kNone);
     try {
       coupled_original = coupled_spectrum(m, false);
       if (coupled_any_adjustment) coupled_adjusted = coupled_spectrum(m, true);

@@ -67,7 +67,7 @@ std::vector<std::string> split_commas(const std::string& text) {
   }
 }
 
-int simulate_rigid(const model::Model& model, const SimulateOptions& options, std::int64_t every) {
+int simulate_rigid(const ir::Model& model, const SimulateOptions& options, std::int64_t every) {
   runtime::IntegratorSpec integrator;
   try {
     integrator = runtime::parse_integrator(options.integrator);
@@ -140,7 +140,7 @@ int cmd_simulate(const Args& args) {
     return 0;
   }
   if (parsed.positional().size() != 1) throw UsageError("expected one model file (see --help)");
-  const model::Model model = model::load_model_file(parsed.positional()[0]);
+  const ir::Model model = frontend::load_model_file(parsed.positional()[0]);
 
   SimulateOptions options;
   options.integrator = parsed.value("integrator").value_or(model.simulation.integrator);

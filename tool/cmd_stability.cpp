@@ -79,7 +79,7 @@ nlohmann::json limits_json(const runtime::StateSpectrum& spectrum) {
 }
 
 // The rigid model's ODE linearised at the initial state (model.initial).
-runtime::SplitSpectrum rigid_spectrum(const model::Model& m) {
+runtime::SplitSpectrum rigid_spectrum(const ir::Model& m) {
   const LoadedSolver solver = load_solver(m, /*quiet=*/true);
   runtime::RigidSystem system(*solver.model, runtime::body_inertias(m));
   const int n = system.num_coordinates();
@@ -108,7 +108,7 @@ int cmd_stability(const Args& args) {
     throw UsageError("expected one MODEL.yaml, got " + std::to_string(parsed.positional().size()) +
                      " arguments (see --help)");
   const std::string& path = parsed.positional()[0];
-  const model::Model m = model::load_model_file(path);
+  const ir::Model m = frontend::load_model_file(path);
   if (m.beams.empty() && m.bodies.empty()) {
     std::cerr << "mbfe stability: " << path << ": model '" << m.name << "' has no bodies and no beams\n";
     return 2;
@@ -129,7 +129,7 @@ int cmd_stability(const Args& args) {
       dof = static_cast<int>(m.bodies.size());
     } else if (coupled) {
       for (const auto& b : m.beams)
-        any_adjustment = any_adjustment || (b.adjustment.present && b.adjustment.policy != model::AdjustmentPolicy::kNone);
+        any_adjustment = any_adjustment || (b.adjustment.present && b.adjustment.policy != ir::AdjustmentPolicy::kNone);
       // Linearised away from an equilibrium too (gravity on the bodies): the
       // same split as for a rigid model.
       const runtime::StateSpectrum full = coupled_spectrum(m, false);

@@ -9,7 +9,7 @@
 
 namespace mbfe::tool {
 
-bool is_coupled(const model::Model& model) { return !model.bodies.empty() && !model.beams.empty(); }
+bool is_coupled(const ir::Model& model) { return !model.bodies.empty() && !model.beams.empty(); }
 
 runtime::BeamForceFn beam_force(const runtime::BeamPart& beam, bool adjusted) {
   const runtime::BeamSystem& sys = beam.system;
@@ -74,7 +74,7 @@ runtime::BeamForceFn beam_acceleration(const runtime::BeamPart& beam, bool adjus
   };
 }
 
-CoupledModel load_coupled(const model::Model& model, std::optional<bool> adjust, bool quiet) {
+CoupledModel load_coupled(const ir::Model& model, std::optional<bool> adjust, bool quiet) {
   CoupledModel out;
   out.beams = runtime::analyse_beams(model);
   out.adjusted = adjust.value_or(out.beams.any_adjustment);
@@ -100,7 +100,7 @@ CoupledModel load_coupled(const model::Model& model, std::optional<bool> adjust,
   return out;
 }
 
-runtime::StateSpectrum coupled_spectrum(const model::Model& model, bool adjusted, bool quiet) {
+runtime::StateSpectrum coupled_spectrum(const ir::Model& model, bool adjusted, bool quiet) {
   CoupledModel cm = load_coupled(model, adjusted, quiet);
   return runtime::linearized_spectrum(cm.dynamics, 0.0, cm.q0, cm.qd0);
 }

@@ -28,12 +28,12 @@ struct CoupledModel {
 };
 
 /// True for a model with bodies and beams (contacts optional).
-bool is_coupled(const model::Model& model);
+bool is_coupled(const ir::Model& model);
 
 /// Builds the coupled model. adjust: absent = adjusted when some beam has an
 /// `adjustment:` block. @throws UsageError for --adjust on without a block,
 /// std::invalid_argument for a beam the assembly rejects.
-CoupledModel load_coupled(const model::Model& model, std::optional<bool> adjust, bool quiet);
+CoupledModel load_coupled(const ir::Model& model, std::optional<bool> adjust, bool quiet);
 
 /// The beam's internal force C q' + K q, original (sparse Rayleigh) or adjusted
 /// (low rank, method-notes section 3, for a uniform cap; eq (27) otherwise).
@@ -46,14 +46,14 @@ runtime::BeamForceFn beam_acceleration(const runtime::BeamPart& beam, bool adjus
 
 /// The spectrum of the linearised, partitioned system at the model's initial
 /// state (runtime/multibody/linearization.h), original or adjusted beams.
-runtime::StateSpectrum coupled_spectrum(const model::Model& model, bool adjusted, bool quiet = true);
+runtime::StateSpectrum coupled_spectrum(const ir::Model& model, bool adjusted, bool quiet = true);
 
 /// `mbfe simulate` of a coupled model: partitioned (eqs (16)-(17)) or augmented
 /// formulation (tool/simulate_coupled.cpp). Returns the exit status (0, 2 or 3).
-int simulate_coupled(const model::Model& model, const SimulateOptions& options, bool augmented);
+int simulate_coupled(const ir::Model& model, const SimulateOptions& options, bool augmented);
 
 /// CSV names of the multipliers, stacked like the constraint rows:
 /// lambda_<contact>_1/_2 for a pin, lambda_<contact> for a slider_pin.
-std::vector<std::string> coupled_multiplier_names(const model::Model& model);
+std::vector<std::string> coupled_multiplier_names(const ir::Model& model);
 
 }  // namespace mbfe::tool

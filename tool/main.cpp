@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
   const Args args(argv + 2, argv + argc);
   try {
     return it->second(args);
-  } catch (const mbfe::model::ModelError& e) {
+  } catch (const mbfe::ir::ModelError& e) {
     std::cerr << e.what() << "\n";
     return 2;
   } catch (const UsageError& e) {

@@ -37,7 +37,7 @@ std::string row_line(const runtime::SpectrumRow& r) {
 
 }  // namespace
 
-BeamModalResult analyse_beam(const model::Beam& beam, const model::Vec2& gravity,
+BeamModalResult analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity,
                              const BeamModalOptions& options) {
   BeamModalResult result;
   result.name = beam.name;

@@ -31,7 +31,7 @@ struct BeamModalResult {
 /// Assembles `beam` and analyses it (dense for small beams, sparse Lanczos for
 /// the lowest modes of large ones). @throws std::invalid_argument on a beam
 /// the assembly rejects.
-BeamModalResult analyse_beam(const model::Beam& beam, const model::Vec2& gravity,
+BeamModalResult analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity,
                              const BeamModalOptions& options = {});
 
 /// {"eigenvalues": [[re, im], ...], "oscillatory_pairs": n,

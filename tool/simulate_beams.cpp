@@ -52,7 +52,7 @@ struct Probe {
   runtime::BeamPointWeights weights;
 };
 
-std::vector<Probe> parse_probes(const std::vector<std::string>& specs, const model::Model& model,
+std::vector<Probe> parse_probes(const std::vector<std::string>& specs, const ir::Model& model,
                                 const runtime::BeamModel& beams) {
   std::vector<Probe> out;
   auto system_of = [&](int i) -> const runtime::BeamSystem& { return beams.beams[i].system; };
@@ -63,7 +63,7 @@ std::vector<Probe> parse_probes(const std::vector<std::string>& specs, const mod
 
 }  // namespace
 
-int simulate_beams(const model::Model& model, const SimulateOptions& options) {
+int simulate_beams(const ir::Model& model, const SimulateOptions& options) {
   if (model.beams.empty()) throw UsageError("model '" + model.name + "' has neither bodies nor beams");
   runtime::IntegratorSpec integrator;
   try {

@@ -38,7 +38,7 @@ struct Probe {
   runtime::BeamPointWeights weights;
 };
 
-std::vector<Probe> parse_probes(const std::vector<std::string>& specs, const model::Model& model,
+std::vector<Probe> parse_probes(const std::vector<std::string>& specs, const ir::Model& model,
                                 const CoupledModel& cm) {
   const int nb = cm.dynamics->nb();
   std::vector<Probe> out;
@@ -72,10 +72,10 @@ std::string eigenvalue_text(std::complex<double> l) {
 
 }  // namespace
 
-std::vector<std::string> coupled_multiplier_names(const model::Model& model) {
+std::vector<std::string> coupled_multiplier_names(const ir::Model& model) {
   std::vector<std::string> out;
-  for (const model::Contact& c : model.contacts) {
-    if (c.type == model::ContactType::kPin) {
+  for (const ir::Contact& c : model.contacts) {
+    if (c.type == ir::ContactType::kPin) {
       out.push_back("lambda_" + c.name + "_1");
       out.push_back("lambda_" + c.name + "_2");
     } else {
@@ -85,7 +85,7 @@ std::vector<std::string> coupled_multiplier_names(const model::Model& model) {
   return out;
 }
 
-int simulate_coupled(const model::Model& model, const SimulateOptions& options, bool augmented) {
+int simulate_coupled(const ir::Model& model, const SimulateOptions& options, bool augmented) {
   runtime::IntegratorSpec integrator;
   try {
     integrator = runtime::parse_integrator(options.integrator);

@@ -23,6 +23,6 @@ struct SimulateOptions {
 };
 
 /// Beam-only models (no bodies). Returns the exit status (0, 2 or 3).
-int simulate_beams(const model::Model& model, const SimulateOptions& options);
+int simulate_beams(const ir::Model& model, const SimulateOptions& options);
 
 }  // namespace mbfe::tool

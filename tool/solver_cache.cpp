@@ -113,7 +113,7 @@ std::string solver_cache_dir() {
   return "/tmp/mbfe-cache-" + std::to_string(::getuid());
 }
 
-LoadedSolver load_solver(const model::Model& model, bool quiet) {
+LoadedSolver load_solver(const ir::Model& model, bool quiet) {
   const gen::GeneratedSolver sources = gen::generate_solver(model);
   const std::string compiler = jit_compiler();
   std::string key_material = std::string("mbfe ") + gen::generator_version() + "\n" + compiler +

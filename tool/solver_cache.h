@@ -38,6 +38,6 @@ std::string solver_cache_dir();
 /// Prints one line on stderr about the cache unless `quiet`.
 /// @throws std::runtime_error with the compiler's message when compiling fails
 /// (nothing is left behind in the cache).
-LoadedSolver load_solver(const model::Model& model, bool quiet);
+LoadedSolver load_solver(const ir::Model& model, bool quiet);
 
 }  // namespace mbfe::tool

@@ -41,6 +41,6 @@ const char* generator_version();
 
 /// Derives and emits the solver of `model` (which must have at least one
 /// body). Deterministic: the same model gives byte-identical text.
-GeneratedSolver generate_solver(const model::Model& model);
+GeneratedSolver generate_solver(const ir::Model& model);
 
 }  // namespace mbfe::gen

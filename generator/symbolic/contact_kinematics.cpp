@@ -11,22 +11,22 @@ using GiNaC::ex;
 // Ground-frame position of a body-frame point as one expression in q (no
 // intermediates), so that it can be differentiated: absolute angle = sum of
 // the revolute coordinates on the path; origins by the joint conventions.
-void point_expression(const model::Model& model, const std::vector<GiNaC::symbol>& q, int body,
-                      const model::Vec2& local, ex& x, ex& y) {
+void point_expression(const ir::Model& model, const std::vector<GiNaC::symbol>& q, int body,
+                      const ir::Vec2& local, ex& x, ex& y) {
   std::vector<int> path;
   for (int b = body; b >= 0; b = model.bodies[b].parent) path.insert(path.begin(), b);
   ex ox = 0, oy = 0, angle = 0;
   for (int b : path) {
-    const model::Joint& joint = model.bodies[b].joint;
+    const ir::Joint& joint = model.bodies[b].joint;
     ex ax = exact(joint.at[0]), ay = exact(joint.at[1]);
-    if (joint.type == model::JointType::kPrismatic) {
+    if (joint.type == ir::JointType::kPrismatic) {
       ax += q[b] * exact(joint.axis[0]);
       ay += q[b] * exact(joint.axis[1]);
     }
     const ex c = GiNaC::cos(angle), s = GiNaC::sin(angle);
     ox += c * ax - s * ay;
     oy += s * ax + c * ay;
-    if (joint.type == model::JointType::kRevolute) angle += q[b];
+    if (joint.type == ir::JointType::kRevolute) angle += q[b];
   }
   const ex c = GiNaC::cos(angle), s = GiNaC::sin(angle);
   x = ox + c * exact(local[0]) - s * exact(local[1]);
@@ -51,14 +51,14 @@ std::string index(const std::string& array, std::size_t i) { return array + "[" 
 
 }  // namespace
 
-std::vector<ContactKernels> derive_contacts(const model::Model& model, const ContactSymbols& sym,
+std::vector<ContactKernels> derive_contacts(const ir::Model& model, const ContactSymbols& sym,
                                             CodeList& code) {
   std::vector<ContactKernels> out;
   const std::size_t nq = sym.q.size();
   for (std::size_t c = 0; c < model.contacts.size(); ++c) {
-    const model::Contact& contact = model.contacts[c];
-    const model::Beam& beam = model.beams[contact.beam];
-    const model::Body& body = model.bodies[contact.body];
+    const ir::Contact& contact = model.contacts[c];
+    const ir::Beam& beam = model.beams[contact.beam];
+    const ir::Body& body = model.bodies[contact.body];
     ex px, py;
     point_expression(model, sym.q, contact.body, body.points[contact.point].position, px, py);
     // Beam frame: the axis direction (ca, sa) is a constant of the model.
@@ -67,7 +67,7 @@ std::vector<ContactKernels> derive_contacts(const model::Model& model, const Con
     const ex x_p = ca * dx + sa * dy;
     const ex y_p = -sa * dx + ca * dy;
 
-    const bool slider = contact.type == model::ContactType::kSliderPin;
+    const bool slider = contact.type == ir::ContactType::kSliderPin;
     const ex s = slider ? x_p : ex(exact(contact.at));
     const std::vector<ex> n = hermite((s - sym.s0) / sym.le, sym.le);
     ex w = 0;

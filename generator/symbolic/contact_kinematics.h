@@ -39,7 +39,7 @@ struct ContactSymbols {
 };
 
 /// Derives the kernels of every contact of `model`. Intermediates go into `code`.
-std::vector<ContactKernels> derive_contacts(const model::Model& model, const ContactSymbols& symbols,
+std::vector<ContactKernels> derive_contacts(const ir::Model& model, const ContactSymbols& symbols,
                                             CodeList& code);
 
 }  // namespace mbfe::gen

@@ -8,7 +8,7 @@ namespace mbfe::gen {
 namespace {
 
 using GiNaC::ex;
-using model::JointType;
+using ir::JointType;
 
 // 2D helpers; `cross` is the z component of the 3D cross product, `perp` is
 // e_z x v (v rotated by +90 degrees).
@@ -18,7 +18,7 @@ Vec2x perp(const Vec2x& v) { return {-v.y, v.x}; }
 Vec2x add(const Vec2x& a, const Vec2x& b) { return {a.x + b.x, a.y + b.y}; }
 Vec2x sub(const Vec2x& a, const Vec2x& b) { return {a.x - b.x, a.y - b.y}; }
 Vec2x scale(const ex& s, const Vec2x& v) { return {s * v.x, s * v.y}; }
-Vec2x constant(const model::Vec2& v) { return {exact(v[0]), exact(v[1])}; }
+Vec2x constant(const ir::Vec2& v) { return {exact(v[0]), exact(v[1])}; }
 Vec2x rotate(const ex& c, const ex& s, const Vec2x& v) { return {c * v.x - s * v.y, s * v.x + c * v.y}; }
 Vec2x define(CodeList& code, const Vec2x& v) { return {code.define(v.x), code.define(v.y)}; }
 
@@ -36,12 +36,12 @@ struct BodyKinematics {
 
 }  // namespace
 
-Vec2x body_point(RigidDerivation& d, const model::Model& model, int b, const model::Vec2& local) {
+Vec2x body_point(RigidDerivation& d, const ir::Model& model, int b, const ir::Vec2& local) {
   (void)model;
   return define(d.code, add(d.origin[b], rotate(d.cos_angle[b], d.sin_angle[b], constant(local))));
 }
 
-void derive_rigid_dynamics(const model::Model& model, RigidDerivation& d) {
+void derive_rigid_dynamics(const ir::Model& model, RigidDerivation& d) {
   const int n = static_cast<int>(model.bodies.size());
   CodeList& code = d.code;
   for (int i = 0; i < n; ++i) {
@@ -53,7 +53,7 @@ void derive_rigid_dynamics(const model::Model& model, RigidDerivation& d) {
   std::vector<BodyKinematics> kin(n);
   std::vector<ex> angle(n);
   for (int i = 0; i < n; ++i) {
-    const model::Body& body = model.bodies[i];
+    const ir::Body& body = model.bodies[i];
     const int p = body.parent;
     const Vec2x parent_origin = p < 0 ? Vec2x{0, 0} : kin[p].origin;
     const ex parent_angle = p < 0 ? ex(0) : angle[p];
@@ -113,22 +113,22 @@ void derive_rigid_dynamics(const model::Model& model, RigidDerivation& d) {
   std::vector<Vec2x> point_force(n, Vec2x{0, 0});
   std::vector<ex> point_moment(n, 0);
   std::vector<ex> spring(n, 0);
-  for (const model::Load& load : model.loads) {
+  for (const ir::Load& load : model.loads) {
     const int b = load.body;
     switch (load.type) {
-      case model::LoadType::kForce: {
-        const model::Vec2 local = load.point >= 0 ? model.bodies[b].points[load.point].position
-                                                  : model::Vec2{0.0, 0.0};
+      case ir::LoadType::kForce: {
+        const ir::Vec2 local = load.point >= 0 ? model.bodies[b].points[load.point].position
+                                                  : ir::Vec2{0.0, 0.0};
         const Vec2x arm = rotate(kin[b].cos_angle, kin[b].sin_angle, constant(local));
         const Vec2x force = constant(load.force);
         point_force[b] = add(point_force[b], force);
         point_moment[b] = point_moment[b] + cross(arm, force);
         break;
       }
-      case model::LoadType::kTorque:
+      case ir::LoadType::kTorque:
         torque_load[b] = torque_load[b] + exact(load.torque);
         break;
-      case model::LoadType::kSpringDamper:
+      case ir::LoadType::kSpringDamper:
         spring[b] = spring[b] - exact(load.stiffness) * (d.q[b] - exact(load.rest)) -
                     exact(load.damping) * d.qd[b];
         break;
@@ -136,7 +136,7 @@ void derive_rigid_dynamics(const model::Model& model, RigidDerivation& d) {
   }
   const Vec2x gravity = constant(model.gravity);
   for (int i = n - 1; i >= 0; --i) {
-    const model::Body& body = model.bodies[i];
+    const ir::Body& body = model.bodies[i];
     const BodyKinematics& k = kin[i];
     const ex mass = exact(body.mass);
     // Centre-of-mass bias acceleration: a_i - w_i^2 (p_i - o_i).
@@ -167,7 +167,7 @@ void derive_rigid_dynamics(const model::Model& model, RigidDerivation& d) {
   std::vector<Vec2x> first_moment(n);
   std::vector<ex> second_moment(n);  // about o_k
   for (int i = n - 1; i >= 0; --i) {
-    const model::Body& body = model.bodies[i];
+    const ir::Body& body = model.bodies[i];
     const ex mass = exact(body.mass);
     ex total_mass = mass;
     Vec2x h = scale(mass, kin[i].com_offset);
@@ -217,7 +217,7 @@ void derive_rigid_dynamics(const model::Model& model, RigidDerivation& d) {
   assembly.width = kSpatial;
   std::vector<std::array<ex, kSpatial>> motion_of(n);
   for (int k = 0; k < n; ++k) {
-    const model::Body& body = model.bodies[k];
+    const ir::Body& body = model.bodies[k];
     const Vec2x& o = kin[k].origin;
     const Vec2x& h = first_moment[k];
     std::array<ex, kSpatial>& motion = motion_of[k];

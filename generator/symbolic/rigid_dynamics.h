@@ -49,9 +49,9 @@ struct RigidDerivation {
 };
 
 /// Derives the kernels of `model` (bodies and rigid loads).
-void derive_rigid_dynamics(const model::Model& model, RigidDerivation& out);
+void derive_rigid_dynamics(const ir::Model& model, RigidDerivation& out);
 
 /// Ground-frame position of a body-frame point of body `b` (an expression in q).
-Vec2x body_point(RigidDerivation& d, const model::Model& model, int b, const model::Vec2& local);
+Vec2x body_point(RigidDerivation& d, const ir::Model& model, int b, const ir::Vec2& local);
 
 }  // namespace mbfe::gen

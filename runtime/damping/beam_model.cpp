@@ -7,10 +7,10 @@
 
 namespace mbfe::runtime {
 
-BeamModel analyse_beams(const model::Model& model, int dense_limit) {
+BeamModel analyse_beams(const ir::Model& model, int dense_limit) {
   BeamModel out;
   std::vector<ModalDynamics> all_original, all_adjusted;
-  for (const model::Beam& b : model.beams) {
+  for (const ir::Beam& b : model.beams) {
     BeamPart part;
     part.system = assemble_beam(b, model.gravity);
     const int n = static_cast<int>(part.system.M.rows());
@@ -23,10 +23,10 @@ BeamModel analyse_beams(const model::Model& model, int dense_limit) {
     mo.dense_limit = dense_limit;
     part.basis = modal_analysis(part.system, mo);
     part.original = rayleigh_modes(part.basis.omega, part.system.rayleigh_alpha, part.system.rayleigh_beta);
-    part.has_adjustment = b.adjustment.present && b.adjustment.policy != model::AdjustmentPolicy::kNone;
+    part.has_adjustment = b.adjustment.present && b.adjustment.policy != ir::AdjustmentPolicy::kNone;
     try {
-      model::Adjustment none;
-      none.policy = model::AdjustmentPolicy::kNone;
+      ir::Adjustment none;
+      none.policy = ir::AdjustmentPolicy::kNone;
       part.adjusted = adjust_modes(part.original, part.has_adjustment ? b.adjustment : none);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("beam '" + b.name + "': " + e.what());

@@ -37,7 +37,7 @@ struct BeamModel {
 /// `dense_limit` DOFs per beam). @throws std::invalid_argument for a beam the
 /// assembly rejects, a beam above dense_limit (message says so) or a bad
 /// adjustment block.
-BeamModel analyse_beams(const model::Model& model, int dense_limit = 2000);
+BeamModel analyse_beams(const ir::Model& model, int dense_limit = 2000);
 
 /// The whole model in modal coordinates, original or adjusted modes.
 std::unique_ptr<ModalBeamOde> modal_beam_ode(const BeamModel& beams, bool adjusted);

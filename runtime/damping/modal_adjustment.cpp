@@ -11,11 +11,11 @@ double fastest_root(double c, double k) {
   return std::max(std::abs(roots.first), std::abs(roots.second));
 }
 
-AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const model::Adjustment& a) {
+AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const ir::Adjustment& a) {
   AdjustedModes out;
   out.modes = modes;
   out.change.assign(modes.size(), ModeChange::kKept);
-  if (a.policy == model::AdjustmentPolicy::kNone) return out;
+  if (a.policy == ir::AdjustmentPolicy::kNone) return out;
   if (!(a.omega_limit > 0.0))
     throw std::invalid_argument("adjustment: omega_limit must be > 0 rad/s (got " + std::to_string(a.omega_limit) +
                                 ")");
@@ -29,13 +29,13 @@ AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const model:
   const double r_cap = (zeta_cap + std::sqrt(zeta_cap * zeta_cap - 1.0)) * wl;
   out.k_star = wl * wl;
   out.c_star = (2.0 + a.margin) * wl;
-  out.r_cap = a.policy == model::AdjustmentPolicy::kPaperEq25 ? 0.0 : r_cap;
-  out.uniform = a.policy == model::AdjustmentPolicy::kCap;
+  out.r_cap = a.policy == ir::AdjustmentPolicy::kPaperEq25 ? 0.0 : r_cap;
+  out.uniform = a.policy == ir::AdjustmentPolicy::kCap;
 
   for (std::size_t j = 0; j < modes.size(); ++j) {
     ModalDynamics& m = out.modes[j];
     bool adjust = false;
-    if (a.policy == model::AdjustmentPolicy::kPaperEq25) {
+    if (a.policy == ir::AdjustmentPolicy::kPaperEq25) {
       adjust = m.omega > wl;
       if (adjust) m.c = (2.0 + a.margin) * m.omega;
     } else {
@@ -44,7 +44,7 @@ AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const model:
         const auto roots = modal_roots(m.c, m.k);
         const bool real_roots = roots.first.imag() == 0.0;
         const double slow = std::abs(roots.first);
-        if (a.policy == model::AdjustmentPolicy::kKeepSlow && real_roots && slow < r_cap) {
+        if (a.policy == ir::AdjustmentPolicy::kKeepSlow && real_roots && slow < r_cap) {
           m.k = slow * r_cap;
           m.c = slow + r_cap;
           out.uniform = false;

@@ -56,7 +56,7 @@ double fastest_root(double c, double k);
 /// Applies `adjustment` (policy, omega_limit rad/s, margin, zeta_min) to the
 /// modes. @throws std::invalid_argument if omega_limit <= 0 (any policy but
 /// none), margin < 0 or zeta_min outside [0, 1).
-AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const model::Adjustment& adjustment);
+AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const ir::Adjustment& adjustment);
 
 /// A symmetric n x n operator A = S + s M + U diag(d) U^T, with S sparse
 /// (possibly empty), M the mass matrix and U = M Phi_L (n x m) dense: the form

@@ -37,6 +37,6 @@ class BeamElement {
 /// The element the beam asks for (today: the Hermite Euler-Bernoulli element
 /// with the beam's mass lumping). @throws std::invalid_argument if a property
 /// of the beam is not positive (length, elements, area, inertia, E, density).
-std::unique_ptr<BeamElement> make_beam_element(const model::Beam& beam);
+std::unique_ptr<BeamElement> make_beam_element(const ir::Beam& beam);
 
 }  // namespace mbfe::runtime

@@ -18,13 +18,13 @@ namespace {
 // length: far above rounding of decimal positions, far below any element.
 constexpr double kNodeTolerance = 1e-9;
 
-std::string beam_error(const model::Beam& beam, const std::string& message) {
+std::string beam_error(const ir::Beam& beam, const std::string& message) {
   return "beam '" + beam.name + "': " + message;
 }
 
 }  // namespace
 
-int node_at(const model::Beam& beam, double s, const char* what) {
+int node_at(const ir::Beam& beam, double s, const char* what) {
   const double L = beam.length;
   const double slack = kNodeTolerance * L;
   if (!(s >= -slack && s <= L + slack)) {
@@ -45,7 +45,7 @@ int node_at(const model::Beam& beam, double s, const char* what) {
   return static_cast<int>(std::clamp<long>(node, 0, beam.elements));
 }
 
-BeamSystem assemble_beam(const model::Beam& beam, const model::Vec2& gravity) {
+BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity) {
   const std::unique_ptr<BeamElement> element = make_beam_element(beam);
   const int ne = beam.elements;
   const int nd = element->node_dofs();
@@ -62,14 +62,14 @@ BeamSystem assemble_beam(const model::Beam& beam, const model::Vec2& gravity) {
 
   // Supports: pinned fixes w, clamped fixes w and w'.
   std::vector<char> fixed(n_full, 0);
-  for (const model::Support& sup : beam.supports) {
+  for (const ir::Support& sup : beam.supports) {
     const int node = sup.node >= 0 ? sup.node : node_at(beam, sup.at, "support");
     if (node < 0 || node >= nn) {
       throw std::invalid_argument(beam_error(beam, "support node " + std::to_string(node) +
                                                        " is outside 0.." + std::to_string(ne)));
     }
     fixed[nd * node] = 1;
-    if (sup.type == model::SupportType::kClamped) fixed[nd * node + 1] = 1;
+    if (sup.type == ir::SupportType::kClamped) fixed[nd * node + 1] = 1;
   }
   sys.full_to_free.assign(n_full, -1);
   for (int i = 0; i < n_full; ++i) {
@@ -109,7 +109,7 @@ BeamSystem assemble_beam(const model::Beam& beam, const model::Vec2& gravity) {
       }
     }
   }
-  for (const model::BeamPointLoad& load : beam.loads) {
+  for (const ir::BeamPointLoad& load : beam.loads) {
     const int node = load.node >= 0 ? load.node : node_at(beam, load.at, "point load");
     if (node < 0 || node >= nn) {
       throw std::invalid_argument(beam_error(beam, "point load node " + std::to_string(node) +

@@ -45,12 +45,12 @@ struct BeamSystem {
 /// must fall on a node (within 1e-9 L).
 /// @throws std::invalid_argument on a non-positive property, a support or load
 /// off the nodes or outside [0, L] (message names the beam).
-BeamSystem assemble_beam(const model::Beam& beam, const model::Vec2& gravity);
+BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity);
 
 /// Node index of position `s` (m) along `beam`. @throws std::invalid_argument
 /// if s is outside [0, L] or not at a node (within 1e-9 L); `what` names the
 /// item in the message ("support", "load").
-int node_at(const model::Beam& beam, double s, const char* what);
+int node_at(const ir::Beam& beam, double s, const char* what);
 
 /// Where position s (m) lies on an assembled beam: its element (0-based; the
 /// last element for s = L) and xi = (s - s_e) / le in [0, 1].

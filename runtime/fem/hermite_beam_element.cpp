@@ -7,7 +7,7 @@
 namespace mbfe::runtime {
 
 HermiteBeamElement::HermiteBeamElement(double le, double EI, double rhoA,
-                                       model::MassLumping lumping)
+                                       ir::MassLumping lumping)
     : le_(le), EI_(EI), rhoA_(rhoA), lumping_(lumping) {}
 
 Eigen::MatrixXd HermiteBeamElement::stiffness() const {
@@ -25,7 +25,7 @@ Eigen::MatrixXd HermiteBeamElement::mass() const {
   const double l = le_;
   const double l2 = l * l;
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(4, 4);
-  if (lumping_ == model::MassLumping::kLumped) {
+  if (lumping_ == ir::MassLumping::kLumped) {
     // HRZ lumping: the consistent diagonal scaled so the translational terms
     // add up to the element mass; keeps a positive rotary inertia (M stays
     // positive definite, so every mode has a finite frequency).
@@ -58,7 +58,7 @@ Eigen::MatrixXd HermiteBeamElement::stiffness_factor() const {
   return f;
 }
 
-std::unique_ptr<BeamElement> make_beam_element(const model::Beam& beam) {
+std::unique_ptr<BeamElement> make_beam_element(const ir::Beam& beam) {
   const auto require_positive = [&](double v, const char* what) {
     if (!(v > 0.0) || !std::isfinite(v)) {
       throw std::invalid_argument("beam '" + beam.name + "': " + what + " must be > 0 (got " +

@@ -12,7 +12,7 @@ class HermiteBeamElement final : public BeamElement {
   /// @param rhoA mass per length (kg/m) @param lumping consistent mass
   /// rho A le / 420 [156 ...] or lumped (row-sum-free HRZ diagonal: rho A le / 2
   /// on w, rho A le^3 / 78 on w'). All must be > 0 (asserted by the factory).
-  HermiteBeamElement(double le, double EI, double rhoA, model::MassLumping lumping);
+  HermiteBeamElement(double le, double EI, double rhoA, ir::MassLumping lumping);
 
   int node_dofs() const override { return 2; }
   Eigen::MatrixXd stiffness() const override;
@@ -27,7 +27,7 @@ class HermiteBeamElement final : public BeamElement {
   double le_;
   double EI_;
   double rhoA_;
-  model::MassLumping lumping_;
+  ir::MassLumping lumping_;
 };
 
 }  // namespace mbfe::runtime

@@ -31,10 +31,10 @@ std::string coordinate_name(const mbfe_model_v1& model, int i) {
 
 }  // namespace
 
-std::vector<BodyInertia> body_inertias(const model::Model& model) {
+std::vector<BodyInertia> body_inertias(const ir::Model& model) {
   std::vector<BodyInertia> out;
   out.reserve(model.bodies.size());
-  for (const model::Body& b : model.bodies) out.push_back({b.name, b.mass, b.inertia});
+  for (const ir::Body& b : model.bodies) out.push_back({b.name, b.mass, b.inertia});
   return out;
 }
 

@@ -28,7 +28,7 @@ struct BodyInertia {
 };
 
 /// One entry per body of `model`, in model (= coordinate) order.
-std::vector<BodyInertia> body_inertias(const model::Model& model);
+std::vector<BodyInertia> body_inertias(const ir::Model& model);
 
 /// M, F, Q of the rigid part at one state (Eigen, column-major).
 struct RigidTerms {

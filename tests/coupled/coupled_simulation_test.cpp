@@ -79,7 +79,7 @@ constexpr double kFormulationForceRelTol = 1e-5;
 constexpr double kClosureTol = 1e-10;
 
 TEST(CoupledSimulation, PartitionedAndAugmentedAgreeOnDoublePendulumBeam) {
-  const model::Model model = model::load_model_file(model_path("double_pendulum_beam.yaml"));
+  const ir::Model model = frontend::load_model_file(model_path("double_pendulum_beam.yaml"));
   tool::CoupledModel cm = tool::load_coupled(model, true, true);
   const Final p = simulate(cm, false, "rk4", 1e-5, 0.05);
   const Final a = simulate(cm, true, "rk4", 1e-5, 0.05);
@@ -100,7 +100,7 @@ TEST(CoupledSimulation, PartitionedAndAugmentedAgreeOnDoublePendulumBeam) {
 TEST(CoupledSimulation, PartitionedKeepsConstraintsClosed) {
   for (const char* name : {"double_pendulum_beam.yaml", "paper_platform.yaml"}) {
     SCOPED_TRACE(name);
-    const model::Model model = model::load_model_file(model_path(name));
+    const ir::Model model = frontend::load_model_file(model_path(name));
     tool::CoupledModel cm = tool::load_coupled(model, true, true);
     const Final p = simulate(cm, false, "rk4", 1e-5, 0.02);
     ASSERT_EQ(p.result.status, SimulationStatus::kCompleted) << p.result.message;
@@ -115,7 +115,7 @@ TEST(CoupledSimulation, PartitionedKeepsConstraintsClosed) {
 // divergence bound within ~500 steps (7 ms of simulated time), so 0.05 s is
 // ample. The original model at 1.6e-8 s: its limit is ~1.5e-8 s.
 TEST(CoupledSimulation, PaperPlatformAdjustedStableAtLimitAndOriginalDivergesAt1p6e8) {
-  const model::Model model = model::load_model_file(model_path("paper_platform.yaml"));
+  const ir::Model model = frontend::load_model_file(model_path("paper_platform.yaml"));
   const runtime::IntegratorSpec fe = runtime::parse_integrator("forward_euler");
   const runtime::StateSpectrum adj = tool::coupled_spectrum(model, true);
   const runtime::StateSpectrum orig = tool::coupled_spectrum(model, false);
@@ -200,7 +200,7 @@ namespace {
 constexpr double kAccelerationRelTol = 1e-9;
 
 TEST(CoupledSimulation, LowRankBeamAccelerationMatchesForceAndSolve) {
-  const model::Model model = model::load_model_file(model_path("paper_platform.yaml"));
+  const ir::Model model = frontend::load_model_file(model_path("paper_platform.yaml"));
   const runtime::BeamModel beams = runtime::analyse_beams(model);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);

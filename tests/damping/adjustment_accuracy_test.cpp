@@ -80,7 +80,7 @@ struct Models {
 
 const Models& models() {
   static const Models m = [] {
-    const model::Model file = model::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml");
+    const ir::Model file = frontend::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml");
     const BeamModel beams = analyse_beams(file);
     const BeamPart& b = beams.beams.at(0);
     const BeamPointWeights pw = point_weights(b.system, 0.5 * b.system.length);
@@ -88,7 +88,7 @@ const Models& models() {
     for (int i = 0; i < 4; ++i)
       if (pw.free_index[i] >= 0) g += pw.w[i] * b.basis.phi.row(pw.free_index[i]).transpose();
     const Eigen::VectorXd p = b.basis.phi.transpose() * b.system.P;
-    model::Adjustment a = file.beams.at(0).adjustment;  // cap, 1e5, 0.1, zeta_min 0.05
+    ir::Adjustment a = file.beams.at(0).adjustment;  // cap, 1e5, 0.1, zeta_min 0.05
     Models out;
     out.original = {b.original, p, g};
     out.cap_floor = {adjust_modes(b.original, a).modes, p, g};

@@ -14,8 +14,8 @@ namespace mbfe::runtime {
 namespace {
 
 /// A short version of the paper beam: 8 elements, pinned-pinned, 16 DOF.
-model::Beam small_beam() {
-  model::Beam b;
+ir::Beam small_beam() {
+  ir::Beam b;
   b.name = "b";
   b.length = 1.0;
   b.elements = 8;
@@ -23,17 +23,17 @@ model::Beam small_beam() {
   b.second_moment = 0.005 * 0.005 * 0.005 * 0.005 / 12.0;
   b.youngs_modulus = 2.1e11;
   b.density = 7860;
-  b.supports = {{0.0, model::SupportType::kPinned, 0, {}}, {1.0, model::SupportType::kPinned, 8, {}}};
+  b.supports = {{0.0, ir::SupportType::kPinned, 0, {}}, {1.0, ir::SupportType::kPinned, 8, {}}};
   b.rayleigh_alpha = 3e-3;
   b.rayleigh_beta = 1.5e-4;
   b.loads = {{0.5, -10.0, 4, {}}};
   return b;
 }
 
-model::Adjustment cap(double omega_limit, double zeta_min = 0.0) {
-  model::Adjustment a;
+ir::Adjustment cap(double omega_limit, double zeta_min = 0.0) {
+  ir::Adjustment a;
   a.present = true;
-  a.policy = model::AdjustmentPolicy::kCap;
+  a.policy = ir::AdjustmentPolicy::kCap;
   a.omega_limit = omega_limit;
   a.margin = 0.1;
   a.zeta_min = zeta_min;
@@ -52,13 +52,13 @@ TEST(Policies, CapFloorAndEq25PerMode) {
   EXPECT_DOUBLE_EQ(a.modes[2].k, 1e10);
   EXPECT_DOUBLE_EQ(a.modes[2].c, 2.1e5);
   EXPECT_NEAR(fastest_root(a.modes[2].c, a.modes[2].k), (1.05 + std::sqrt(1.05 * 1.05 - 1)) * 1e5, 1e-6);
-  model::Adjustment eq25 = cap(1e5);
-  eq25.policy = model::AdjustmentPolicy::kPaperEq25;
+  ir::Adjustment eq25 = cap(1e5);
+  eq25.policy = ir::AdjustmentPolicy::kPaperEq25;
   const AdjustedModes b = adjust_modes(modes, eq25);
   EXPECT_EQ(b.change[1], ModeChange::kKept);
   EXPECT_DOUBLE_EQ(b.modes[2].c, 2.1 * 9e5);
   EXPECT_DOUBLE_EQ(b.modes[2].k, 8.1e11);
-  model::Adjustment bad = cap(0.0);
+  ir::Adjustment bad = cap(0.0);
   EXPECT_THROW(adjust_modes(modes, bad), std::invalid_argument);
 }
 
@@ -83,8 +83,8 @@ TEST(LowRank, EqualsDenseEq27OnASmallBeam) {
   EXPECT_LT((c_low - c_full).norm(), kCompleteTol * c_full.norm());
   EXPECT_LT((k_full - k_full.transpose()).norm(), kCompleteTol * k_full.norm());
   // With nothing adjusted, eq (27) gives back the original K and C.
-  model::Adjustment none;
-  none.policy = model::AdjustmentPolicy::kNone;
+  ir::Adjustment none;
+  none.policy = ir::AdjustmentPolicy::kNone;
   const NodalAdjusted orig = eq27_adjusted(sys.M, basis, adjust_modes(original, none));
   EXPECT_LT((dense_matrix(orig.K, sys.M, orig.U) - Eigen::MatrixXd(sys.K)).norm(), kCompleteTol * sys.K.norm());
   EXPECT_LT((dense_matrix(orig.C, sys.M, orig.U) - Eigen::MatrixXd(sys.C)).norm(), kCompleteTol * sys.C.norm());

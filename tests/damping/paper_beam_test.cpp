@@ -21,8 +21,8 @@ namespace {
 // 100-DOF eigen-solver is good to ~1e-10. 5e-6 relative is the printing.
 constexpr double kNotesRel = 5e-6;
 
-const model::Model& paper_model() {
-  static const model::Model m = model::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml");
+const ir::Model& paper_model() {
+  static const ir::Model m = frontend::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml");
   return m;
 }
 
@@ -34,9 +34,9 @@ const BeamModel& paper_beams() {
 double max_modulus(const StateSpectrum& s) { return std::abs(s.eigenvalues.back()); }
 
 TEST(PaperBeam, AdjustmentBlockIsThePapers) {
-  const model::Adjustment& a = paper_model().beams.at(0).adjustment;
+  const ir::Adjustment& a = paper_model().beams.at(0).adjustment;
   EXPECT_TRUE(a.present);
-  EXPECT_EQ(a.policy, model::AdjustmentPolicy::kCap);
+  EXPECT_EQ(a.policy, ir::AdjustmentPolicy::kCap);
   EXPECT_DOUBLE_EQ(a.omega_limit, 1e5);
   EXPECT_DOUBLE_EQ(a.margin, 0.1);
   EXPECT_DOUBLE_EQ(a.zeta_min, 0.05);
@@ -61,8 +61,8 @@ TEST(PaperBeam, AdjustedSpectrumMatchesMethodNotes) {
 
 TEST(PaperBeam, LiteralEq25GivesOnly94x) {
   const BeamPart& p = paper_beams().beams.at(0);
-  model::Adjustment a = paper_model().beams.at(0).adjustment;
-  a.policy = model::AdjustmentPolicy::kPaperEq25;
+  ir::Adjustment a = paper_model().beams.at(0).adjustment;
+  a.policy = ir::AdjustmentPolicy::kPaperEq25;
   const StateSpectrum s = state_spectrum(adjust_modes(p.original, a).modes);
   EXPECT_NEAR(max_modulus(s), 1.40264e6, kNotesRel * 1.40264e6);
   EXPECT_NEAR(stable_step(parse_integrator("forward_euler"), s.eigenvalues).h, 1.42588e-6, kNotesRel * 1.42588e-6);
@@ -70,8 +70,8 @@ TEST(PaperBeam, LiteralEq25GivesOnly94x) {
 
 TEST(PaperBeam, KeepSlowReachesTheSameLimitAsCap) {
   const BeamPart& p = paper_beams().beams.at(0);
-  model::Adjustment a = paper_model().beams.at(0).adjustment;
-  a.policy = model::AdjustmentPolicy::kKeepSlow;
+  ir::Adjustment a = paper_model().beams.at(0).adjustment;
+  a.policy = ir::AdjustmentPolicy::kKeepSlow;
   const AdjustedModes keep = adjust_modes(p.original, a);
   EXPECT_FALSE(keep.uniform);
   const StateSpectrum s = state_spectrum(keep.modes);

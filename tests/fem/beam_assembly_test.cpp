@@ -39,7 +39,7 @@ TEST(BeamAssembly, PinnedBeamDropsTheEndDeflectionsInContractOrder) {
 }
 
 TEST(BeamAssembly, MidspanPointLoadMatchesClosedForm) {
-  model::Beam b = test::paper_beam();
+  ir::Beam b = test::paper_beam();
   b.loads = {{0.5, -10.0, -1, {}}};
   const BeamSystem s = assemble_beam(b, {0.0, 0.0});
   const Eigen::VectorXd q = solve_static(s);
@@ -52,7 +52,7 @@ TEST(BeamAssembly, MidspanPointLoadMatchesClosedForm) {
 }
 
 TEST(BeamAssembly, CantileverTipLoadMatchesClosedForm) {
-  model::Beam b = test::cantilever_beam(20);
+  ir::Beam b = test::cantilever_beam(20);
   b.loads = {{1.0, 3.0, -1, {}}};
   const BeamSystem s = assemble_beam(b, {0.0, 0.0});
   EXPECT_EQ(s.M.rows(), 40);  // clamped: w and w' at node 0 removed
@@ -63,7 +63,7 @@ TEST(BeamAssembly, CantileverTipLoadMatchesClosedForm) {
 }
 
 TEST(BeamAssembly, OwnWeightUsesTheTransverseComponentOfGravity) {
-  const model::Beam b = test::paper_beam();
+  const ir::Beam b = test::paper_beam();
   const double q_down = -9.81 * mass_per_length(b);  // N/m along +n = (0, 1)
   {
     const BeamSystem s = assemble_beam(b, {0.0, -9.81});
@@ -78,7 +78,7 @@ TEST(BeamAssembly, OwnWeightUsesTheTransverseComponentOfGravity) {
   {
     // A vertical beam (axis +y): n = (-1, 0); gravity along -y loads nothing,
     // gravity along -x loads it along +n.
-    model::Beam v = b;
+    ir::Beam v = b;
     v.angle = test::kPi / 2;
     EXPECT_NEAR(assemble_beam(v, {0.0, -9.81}).P.norm(), 0.0, 1e-15);
     const BeamSystem s = assemble_beam(v, {-9.81, 0.0});
@@ -89,20 +89,20 @@ TEST(BeamAssembly, OwnWeightUsesTheTransverseComponentOfGravity) {
 TEST(BeamAssembly, ConsistentNodalMomentsAreExactForUniformLoad) {
   // Clamped-clamped under own weight: w(L/2) = q L^4 / (384 EI); needs the
   // moment terms of the consistent load (plain nodal forces give 5x this).
-  model::Beam b = test::paper_beam(0.005, 10);
-  b.supports = {{0.0, model::SupportType::kClamped, -1, {}},
-                {1.0, model::SupportType::kClamped, -1, {}}};
+  ir::Beam b = test::paper_beam(0.005, 10);
+  b.supports = {{0.0, ir::SupportType::kClamped, -1, {}},
+                {1.0, ir::SupportType::kClamped, -1, {}}};
   const BeamSystem s = assemble_beam(b, {0.0, -9.81});
   const double expected = -9.81 * mass_per_length(b) / (384.0 * bending_stiffness(b));
   EXPECT_NEAR(deflection_at(s, solve_static(s), 0.5) / expected, 1.0, kStaticTol);
 }
 
 TEST(BeamAssembly, RejectsSupportsAndLoadsOffTheNodes) {
-  model::Beam b = test::paper_beam();
+  ir::Beam b = test::paper_beam();
   b.loads = {{0.51, -10.0, -1, {}}};
   EXPECT_THROW(assemble_beam(b, {0.0, 0.0}), std::invalid_argument);
   b = test::paper_beam();
-  b.supports.push_back({1.5, model::SupportType::kPinned, -1, {}});
+  b.supports.push_back({1.5, ir::SupportType::kPinned, -1, {}});
   EXPECT_THROW(assemble_beam(b, {0.0, 0.0}), std::invalid_argument);
   b = test::paper_beam();
   b.second_moment = 0.0;
@@ -121,9 +121,9 @@ TEST(BeamAssembly, PointWeightsSkipFixedDofs) {
 }
 
 TEST(BeamAssembly, LumpedMassKeepsTheTotalMass) {
-  model::Beam b = test::paper_beam();
+  ir::Beam b = test::paper_beam();
   b.supports.clear();
-  for (const auto lumping : {model::MassLumping::kConsistent, model::MassLumping::kLumped}) {
+  for (const auto lumping : {ir::MassLumping::kConsistent, ir::MassLumping::kLumped}) {
     b.mass = lumping;
     const BeamSystem s = assemble_beam(b, {0.0, 0.0});
     Eigen::VectorXd translation = Eigen::VectorXd::Zero(s.M.rows());

@@ -49,7 +49,7 @@ TEST(HermiteShape, DerivativesMatchFiniteDifferences) {
 
 TEST(HermiteElement, RigidMotionsStoreNoEnergyAndCarryTheElementMass) {
   const double le = 0.02, EI = 109.375, rhoA = 0.1965;
-  const HermiteBeamElement e(le, EI, rhoA, model::MassLumping::kConsistent);
+  const HermiteBeamElement e(le, EI, rhoA, ir::MassLumping::kConsistent);
   Eigen::Vector4d translation(1.0, 0.0, 1.0, 0.0);
   Eigen::Vector4d rotation(0.0, 1.0, le, 1.0);  // w = s about node 1
   const Eigen::MatrixXd K = e.stiffness();
@@ -57,7 +57,7 @@ TEST(HermiteElement, RigidMotionsStoreNoEnergyAndCarryTheElementMass) {
   EXPECT_NEAR((K * rotation).norm(), 0.0, kRoundoffTol * K.norm());
   // Kinetic energy of a unit translation: total mass.
   EXPECT_NEAR(translation.dot(e.mass() * translation), rhoA * le, kRoundoffTol);
-  const HermiteBeamElement lumped(le, EI, rhoA, model::MassLumping::kLumped);
+  const HermiteBeamElement lumped(le, EI, rhoA, ir::MassLumping::kLumped);
   EXPECT_NEAR(translation.dot(lumped.mass() * translation), rhoA * le, kRoundoffTol);
   EXPECT_TRUE(lumped.mass().isDiagonal());
   EXPECT_GT(lumped.mass()(1, 1), 0.0);
@@ -66,7 +66,7 @@ TEST(HermiteElement, RigidMotionsStoreNoEnergyAndCarryTheElementMass) {
 TEST(HermiteElement, UniformLoadIsTheWorkOfTheShapeFunctions) {
   // p_a = integral q N_a ds, by 3-point Gauss (exact for cubics).
   const double le = 0.3, q = -2.5;
-  const HermiteBeamElement e(le, 1.0, 1.0, model::MassLumping::kConsistent);
+  const HermiteBeamElement e(le, 1.0, 1.0, ir::MassLumping::kConsistent);
   const double g = std::sqrt(0.6);
   const double xs[3] = {0.5 * (1 - g), 0.5, 0.5 * (1 + g)};
   const double ws[3] = {5.0 / 18, 8.0 / 18, 5.0 / 18};

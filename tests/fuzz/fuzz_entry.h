@@ -39,15 +39,15 @@ inline void require(bool ok, const std::string& what) {
   if (!ok) throw FuzzInvariantError("accepted model breaks an IR invariant: " + what);
 }
 
-inline bool finite2(const model::Vec2& v) { return std::isfinite(v[0]) && std::isfinite(v[1]); }
+inline bool finite2(const ir::Vec2& v) { return std::isfinite(v[0]) && std::isfinite(v[1]); }
 
-inline void check_invariants(const model::Model& m) {
-  using model::is_identifier;
+inline void check_invariants(const ir::Model& m) {
+  using ir::is_identifier;
   require(is_identifier(m.name), "model name '" + m.name + "' is not an identifier");
   require(finite2(m.gravity), "gravity not finite");
   const int nb = static_cast<int>(m.bodies.size());
   for (int i = 0; i < nb; ++i) {
-    const model::Body& b = m.bodies[i];
+    const ir::Body& b = m.bodies[i];
     require(is_identifier(b.name), "body name '" + b.name + "' is not an identifier");
     require(b.parent >= -1 && b.parent < i, "body '" + b.name + "': parent index out of order");
     require(std::isfinite(b.mass) && b.mass >= 0, "body '" + b.name + "': mass");
@@ -58,7 +58,7 @@ inline void check_invariants(const model::Model& m) {
       require(finite2(p.position), "point '" + p.name + "' not finite");
     }
   }
-  for (const model::Load& l : m.loads) {
+  for (const ir::Load& l : m.loads) {
     require(l.body >= 0 && l.body < nb, "load body index out of range");
     require(l.point >= -1 && l.point < static_cast<int>(m.bodies[l.body].points.size()),
             "load point index out of range");
@@ -66,7 +66,7 @@ inline void check_invariants(const model::Model& m) {
                 std::isfinite(l.damping) && std::isfinite(l.rest),
             "load value not finite");
   }
-  for (const model::Beam& beam : m.beams) {
+  for (const ir::Beam& beam : m.beams) {
     require(is_identifier(beam.name), "beam name '" + beam.name + "' is not an identifier");
     require(beam.elements > 0, "beam '" + beam.name + "': elements <= 0");
     require(std::isfinite(beam.length) && beam.length > 0, "beam '" + beam.name + "': length");
@@ -77,7 +77,7 @@ inline void check_invariants(const model::Model& m) {
               "beam '" + beam.name + "': load node");
   }
   const int nbeams = static_cast<int>(m.beams.size());
-  for (const model::Contact& c : m.contacts) {
+  for (const ir::Contact& c : m.contacts) {
     require(is_identifier(c.name), "contact name '" + c.name + "' is not an identifier");
     require(c.body >= 0 && c.body < nb, "contact body index out of range");
     require(c.point >= 0 && c.point < static_cast<int>(m.bodies[c.body].points.size()),
@@ -100,10 +100,10 @@ enum class FuzzOutcome { kRejected, kParsed, kGenerated, kGeneratorRefused };
 /// Runs one input. Returns the outcome; lets every unexpected exception escape.
 inline FuzzOutcome fuzz_one_input(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  model::Model m;
+  ir::Model m;
   try {
-    m = model::parse_model_text(text, "fuzz.yaml");
-  } catch (const model::ModelError& e) {
+    m = frontend::parse_model_text(text, "fuzz.yaml");
+  } catch (const ir::ModelError& e) {
     // Bad input must say where: "fuzz.yaml:" opens every message.
     const std::string what = e.what();
     if (what.rfind("fuzz.yaml:", 0) != 0)
@@ -123,7 +123,7 @@ inline FuzzOutcome fuzz_one_input(const std::uint8_t* data, std::size_t size) {
                         "generated " + file.name + " holds a byte outside printable ASCII");
   } catch (const std::invalid_argument&) {
     return FuzzOutcome::kGeneratorRefused;
-  } catch (const model::ModelError&) {
+  } catch (const ir::ModelError&) {
     return FuzzOutcome::kGeneratorRefused;
   }
   return FuzzOutcome::kGenerated;

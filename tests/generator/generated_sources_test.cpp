@@ -29,7 +29,7 @@ TEST(GeneratedSources, CommittedSourcesAreUpToDate) {
   int checked = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(MBFE_SOURCE_DIR) / "models")) {
     if (entry.path().extension() != ".yaml") continue;
-    const model::Model m = model::load_model_file(entry.path().string());
+    const ir::Model m = frontend::load_model_file(entry.path().string());
     if (m.bodies.empty()) continue;  // beam-only models have no generated part
     const fs::path folder = fs::path(MBFE_SOURCE_DIR) / "generated" / m.name;
     ASSERT_TRUE(fs::is_directory(folder)) << folder << " is missing: " << kRegenerate;

@@ -32,7 +32,7 @@ std::string chain_yaml(int n) {
 }
 
 gen::GeneratedSolver generate(const std::string& yaml) {
-  return gen::generate_solver(model::parse_model_text(yaml, "counts.yaml"));
+  return gen::generate_solver(frontend::parse_model_text(yaml, "counts.yaml"));
 }
 
 gen::KernelOperations kernel(const gen::GeneratedSolver& s, const std::string& name) {

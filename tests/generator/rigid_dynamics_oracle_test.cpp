@@ -39,26 +39,26 @@ Eigen::Matrix2d rot(double a) {
   return r;
 }
 
-Pose forward(const model::Model& m, const Eigen::VectorXd& q) {
+Pose forward(const ir::Model& m, const Eigen::VectorXd& q) {
   Pose pose;
   for (std::size_t i = 0; i < m.bodies.size(); ++i) {
     const auto& b = m.bodies[i];
     const double pa = b.parent < 0 ? 0.0 : pose.angle[b.parent];
     const Eigen::Vector2d po = b.parent < 0 ? Eigen::Vector2d::Zero() : pose.origin[b.parent];
     Eigen::Vector2d at(b.joint.at[0], b.joint.at[1]);
-    if (b.joint.type == model::JointType::kPrismatic) at += q[i] * Eigen::Vector2d(b.joint.axis[0], b.joint.axis[1]);
+    if (b.joint.type == ir::JointType::kPrismatic) at += q[i] * Eigen::Vector2d(b.joint.axis[0], b.joint.axis[1]);
     pose.origin.push_back(po + rot(pa) * at);
-    pose.angle.push_back(b.joint.type == model::JointType::kRevolute ? pa + q[i] : pa);
+    pose.angle.push_back(b.joint.type == ir::JointType::kRevolute ? pa + q[i] : pa);
   }
   return pose;
 }
 
-Eigen::Vector2d point(const model::Model& m, const Eigen::VectorXd& q, int body, const model::Vec2& local) {
+Eigen::Vector2d point(const ir::Model& m, const Eigen::VectorXd& q, int body, const ir::Vec2& local) {
   const Pose pose = forward(m, q);
   return pose.origin[body] + rot(pose.angle[body]) * Eigen::Vector2d(local[0], local[1]);
 }
 
-Eigen::MatrixXd point_jacobian(const model::Model& m, const Eigen::VectorXd& q, int body, const model::Vec2& local) {
+Eigen::MatrixXd point_jacobian(const ir::Model& m, const Eigen::VectorXd& q, int body, const ir::Vec2& local) {
   constexpr double h = 1e-5;
   Eigen::MatrixXd J(2, q.size());
   for (int k = 0; k < q.size(); ++k) {
@@ -70,16 +70,16 @@ Eigen::MatrixXd point_jacobian(const model::Model& m, const Eigen::VectorXd& q, 
   return J;
 }
 
-Eigen::RowVectorXd angle_jacobian(const model::Model& m, int body) {
+Eigen::RowVectorXd angle_jacobian(const ir::Model& m, int body) {
   Eigen::RowVectorXd Jw = Eigen::RowVectorXd::Zero(m.bodies.size());
   for (int a = body; a >= 0; a = m.bodies[a].parent)
-    if (m.bodies[a].joint.type == model::JointType::kRevolute) Jw[a] = 1.0;
+    if (m.bodies[a].joint.type == ir::JointType::kRevolute) Jw[a] = 1.0;
   return Jw;
 }
 
 // Acceleration of a body point when qdd = 0: d^2/ds^2 p(q + s qd) at s = 0.
-Eigen::Vector2d bias_acceleration(const model::Model& m, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                                  int body, const model::Vec2& local) {
+Eigen::Vector2d bias_acceleration(const ir::Model& m, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                  int body, const ir::Vec2& local) {
   constexpr double h = 1e-4;
   return (point(m, q + h * qd, body, local) - 2 * point(m, q, body, local) + point(m, q - h * qd, body, local)) /
          (h * h);
@@ -121,7 +121,7 @@ TEST(GeneratedRigidDynamics, MatchesNumericalOracleOnRandomTrees) {
   std::mt19937 rng(424242);
   std::uniform_real_distribution<double> angle(-3.0, 3.0), rate(-2.0, 2.0);
   for (int bodies : {1, 3, 6}) {
-    const model::Model m = model::parse_model_text(random_tree_yaml(rng, bodies), "random_tree.yaml");
+    const ir::Model m = frontend::parse_model_text(random_tree_yaml(rng, bodies), "random_tree.yaml");
     const tool::LoadedSolver solver = tool::load_solver(m, /*quiet=*/true);
     const int n = bodies;
     for (int trial = 0; trial < 30; ++trial) {
@@ -143,10 +143,10 @@ TEST(GeneratedRigidDynamics, MatchesNumericalOracleOnRandomTrees) {
       }
       for (const auto& load : m.loads) {
         const auto& b = m.bodies[load.body];
-        if (load.type == model::LoadType::kForce)
+        if (load.type == ir::LoadType::kForce)
           Q_oracle += point_jacobian(m, q, load.body, b.points[load.point].position).transpose() *
                       Eigen::Vector2d(load.force[0], load.force[1]);
-        else if (load.type == model::LoadType::kTorque)
+        else if (load.type == ir::LoadType::kTorque)
           Q_oracle += angle_jacobian(m, load.body).transpose() * load.torque;
         else
           Q_oracle[load.body] += -load.stiffness * (q[load.body] - load.rest) - load.damping * qd[load.body];
@@ -187,11 +187,11 @@ bodies:
 )";
 
 TEST(GeneratedRigidDynamics, BranchedMixedTreeMatchesOracleInBothKernels) {
-  const model::Model m = model::parse_model_text(kBranchedMixedTree, "branched_mixed.yaml");
+  const ir::Model m = frontend::parse_model_text(kBranchedMixedTree, "branched_mixed.yaml");
   const int n = static_cast<int>(m.bodies.size());
   // What the test is for: both joint types, and bodies on different branches.
   int prismatic = 0, unrelated_pairs = 0;
-  for (const auto& b : m.bodies) prismatic += b.joint.type == model::JointType::kPrismatic;
+  for (const auto& b : m.bodies) prismatic += b.joint.type == ir::JointType::kPrismatic;
   for (int r = 0; r < n; ++r)
     for (int c = r + 1; c < n; ++c) {
       bool related = false;

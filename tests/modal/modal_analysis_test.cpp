@@ -30,7 +30,7 @@ constexpr double kSparseOmegaTol = 1e-9;
 constexpr double kSparseVectorTol = 1e-5;
 
 TEST(ModalAnalysis, PinnedPinnedBeamMatchesTheory) {
-  const model::Beam b = test::paper_beam();
+  const ir::Beam b = test::paper_beam();
   const ModalBasis m = modal_analysis(assemble_beam(b, {0.0, 0.0}));
   ASSERT_EQ(m.omega.size(), 100);
   EXPECT_TRUE(m.complete);
@@ -42,7 +42,7 @@ TEST(ModalAnalysis, PinnedPinnedBeamMatchesTheory) {
 }
 
 TEST(ModalAnalysis, CantileverMatchesTheory) {
-  const model::Beam b = test::cantilever_beam();
+  const ir::Beam b = test::cantilever_beam();
   const ModalBasis m = modal_analysis(assemble_beam(b, {0.0, 0.0}));
   // beta_n L, roots of cos(x) cosh(x) = -1.
   const double beta_l[5] = {1.875104068711961, 4.694091132974175, 7.854757438237613,
@@ -55,8 +55,8 @@ TEST(ModalAnalysis, CantileverMatchesTheory) {
 }
 
 TEST(ModalAnalysis, ModesAreMassOrthonormalAndDiagonaliseK) {
-  for (const auto lumping : {model::MassLumping::kConsistent, model::MassLumping::kLumped}) {
-    model::Beam b = test::paper_beam();
+  for (const auto lumping : {ir::MassLumping::kConsistent, ir::MassLumping::kLumped}) {
+    ir::Beam b = test::paper_beam();
     b.mass = lumping;
     const BeamSystem s = assemble_beam(b, {0.0, 0.0});
     const ModalBasis m = modal_analysis(s);
@@ -93,8 +93,8 @@ TEST(ModalAnalysis, SparseLanczosAgreesWithDenseOnTheLowest20Modes) {
 
 TEST(ModalAnalysis, SparsePathCopesWithARigidMode) {
   // One pin only: the beam swings freely about it (omega_1 = 0).
-  model::Beam b = test::paper_beam(0.005, 100);
-  b.supports = {{0.0, model::SupportType::kPinned, -1, {}}};
+  ir::Beam b = test::paper_beam(0.005, 100);
+  b.supports = {{0.0, ir::SupportType::kPinned, -1, {}}};
   const BeamSystem s = assemble_beam(b, {0.0, 0.0});
   ModalOptions options;
   options.num_modes = 6;
@@ -124,7 +124,7 @@ TEST(ModalAnalysis, SparsePathKeepsTheLowestModesOfAFineBeam) {
   // Discretisation error of mode 5 here is ~4e-15 (7e-6 at 50 elements, falling
   // as ne^-4).
   constexpr double kFineBeamTol = 1e-9;
-  const model::Beam b = test::paper_beam(0.005, 10000);
+  const ir::Beam b = test::paper_beam(0.005, 10000);
   const BeamSystem s = assemble_beam(b, {0.0, 0.0});
   ModalOptions options;
   options.num_modes = 5;

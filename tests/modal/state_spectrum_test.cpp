@@ -39,7 +39,7 @@ void expect_reference(double got, Printed ref, const char* what) {
 }
 
 StateSpectrum paper_spectrum(ModalBasis* basis_out = nullptr) {
-  const model::Beam b = test::paper_beam();
+  const ir::Beam b = test::paper_beam();
   const ModalBasis basis = modal_analysis(assemble_beam(b, {0.0, -9.81}));
   if (basis_out) *basis_out = basis;
   return rayleigh_spectrum(basis, b.rayleigh_alpha, b.rayleigh_beta);
@@ -97,7 +97,7 @@ TEST(StateSpectrum, MatchesThePapersTable1) {
 }
 
 TEST(StateSpectrum, PerModeRootsAgreeWithDenseEigenvaluesOfB) {
-  const model::Beam b = test::paper_beam();
+  const ir::Beam b = test::paper_beam();
   const BeamSystem sys = assemble_beam(b, {0.0, 0.0});
   const StateSpectrum modal =
       rayleigh_spectrum(modal_analysis(sys), b.rayleigh_alpha, b.rayleigh_beta);

@@ -19,14 +19,14 @@ namespace mbfe::reference {
 namespace {
 
 TEST(DoublePendulumBeamReference, NumbersMatchTheModelFile) {
-  const model::Model m = model::load_model_file(std::string(MBFE_SOURCE_DIR) +
+  const ir::Model m = frontend::load_model_file(std::string(MBFE_SOURCE_DIR) +
                                                 "/models/double_pendulum_beam.yaml");
   const DoublePendulumBeamParams& p = double_pendulum_beam_params();
   ASSERT_EQ(m.bodies.size(), 2u);
   ASSERT_EQ(m.beams.size(), 1u);
   ASSERT_EQ(m.contacts.size(), 1u);
-  const model::Body& b1 = m.bodies[0];
-  const model::Body& b2 = m.bodies[1];
+  const ir::Body& b1 = m.bodies[0];
+  const ir::Body& b2 = m.bodies[1];
   EXPECT_EQ(b1.joint.at[0], p.pendulum.hinge.x());
   EXPECT_EQ(b1.joint.at[1], p.pendulum.hinge.y());
   EXPECT_EQ(b2.joint.at[0], p.pendulum.l1);
@@ -36,12 +36,12 @@ TEST(DoublePendulumBeamReference, NumbersMatchTheModelFile) {
   EXPECT_NEAR(b2.inertia, p.pendulum.I2, 1e-15);
   EXPECT_EQ(b1.com[0], p.pendulum.c1);
   EXPECT_EQ(b2.com[0], p.pendulum.c2);
-  const model::Contact& c = m.contacts[0];
+  const ir::Contact& c = m.contacts[0];
   EXPECT_EQ(c.name, "tip_slider");
-  EXPECT_EQ(c.type, model::ContactType::kSliderPin);
+  EXPECT_EQ(c.type, ir::ContactType::kSliderPin);
   EXPECT_EQ(c.body, 1);
   EXPECT_EQ(b2.points.at(c.point).position[0], p.l2);
-  const model::Beam& beam = m.beams[0];
+  const ir::Beam& beam = m.beams[0];
   EXPECT_EQ(beam.length, p.beam_length);
   EXPECT_EQ(beam.elements, p.beam_elements);
   EXPECT_EQ(beam.angle, p.beam_angle);

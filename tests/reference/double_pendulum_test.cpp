@@ -81,15 +81,15 @@ constexpr double kRelTol = 1e-12;
 constexpr double kTrajTol = 1e-9;
 
 DoublePendulumParams params_from_model_file() {
-  const model::Model m =
-      model::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/double_pendulum.yaml");
+  const ir::Model m =
+      frontend::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/double_pendulum.yaml");
   EXPECT_EQ(m.bodies.size(), 2u);
-  const model::Body& b1 = m.bodies.at(0);
-  const model::Body& b2 = m.bodies.at(1);
+  const ir::Body& b1 = m.bodies.at(0);
+  const ir::Body& b2 = m.bodies.at(1);
   // The reference assumes revolute joints, link 1 hinged at the origin, link 2 at
   // [l1, 0] of link 1, centres of mass on the links' x axes.
-  EXPECT_EQ(b1.joint.type, model::JointType::kRevolute);
-  EXPECT_EQ(b2.joint.type, model::JointType::kRevolute);
+  EXPECT_EQ(b1.joint.type, ir::JointType::kRevolute);
+  EXPECT_EQ(b2.joint.type, ir::JointType::kRevolute);
   EXPECT_EQ(b2.parent, 0);
   EXPECT_EQ(b2.joint.at[1], 0.0);
   EXPECT_EQ(b1.com[1], 0.0);

@@ -10,7 +10,8 @@
 
 #include "frontend/sha256.h"
 
-namespace mbfe::model {
+namespace mbfe::frontend {
+using namespace mbfe::ir;
 namespace {
 
 const std::string kModelsDir = std::string(MBFE_SOURCE_DIR) + "/models/";
@@ -350,4 +351,4 @@ TEST(Identifier, Rules) {
 }
 
 }  // namespace
-}  // namespace mbfe::model
+}  // namespace mbfe::frontend

@@ -58,7 +58,8 @@
 
 #include "frontend/parse_model.h"
 
-namespace mbfe::model {
+namespace mbfe::frontend {
+using namespace mbfe::ir;
 namespace {
 
 namespace fs = std::filesystem;
@@ -215,4 +216,4 @@ TEST(MalformedCorpusGenerated, TenThousandBodyChainWithinRaisedLimits) {
 }
 
 }  // namespace
-}  // namespace mbfe::model
+}  // namespace mbfe::frontend
