@@ -1,7 +1,7 @@
 // The paper's platform (models/paper_platform.yaml: 4 rigid coordinates, two
 // beams of 100 DOFs, a pin and a slider-pin), adjusted damping, forward Euler
 // at 0.95 x the limit of the linearised partitioned system, 1 s simulated.
-// Target (issue 5): under 0.5 s wall on a 2-core machine.
+// Target: under 0.5 s wall on a 2-core machine (docs/performance.md).
 //
 //   build/bench/paper_platform_bench         (or build/bin/paper_platform_bench)
 //
@@ -20,7 +20,8 @@
 
 #include <memory>
 
-#include "tool/coupled_model.h"
+#include "api/solver_cache.h"
+#include "runtime/simulation/assembled_model.h"
 #include "runtime/integrators/integrator.h"
 #include "runtime/integrators/simulation_driver.h"
 #include "frontend/parse_model.h"
@@ -31,9 +32,16 @@ namespace {
 
 using namespace mbfe;
 
+// The platform's dynamics (adjusted beams) and initial coordinates.
+struct CoupledModel {
+  std::shared_ptr<runtime::AssembledModel> assembled;
+  std::shared_ptr<runtime::CoupledDynamics> dynamics;
+  Eigen::VectorXd q0, qd0;
+};
+
 struct Setup {
   ir::Model model;
-  tool::CoupledModel cm;
+  CoupledModel cm;
   double h = 0.0;
 };
 
@@ -41,7 +49,10 @@ Setup& setup() {
   static Setup* s = [] {
     auto* out = new Setup;
     out->model = frontend::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_platform.yaml");
-    out->cm = tool::load_coupled(out->model, true, true);
+    out->cm.assembled =
+        std::make_shared<runtime::AssembledModel>(out->model, load_solver(out->model, /*quiet=*/true).model);
+    out->cm.dynamics = out->cm.assembled->make_dynamics(/*adjusted=*/true);
+    out->cm.assembled->initial_coordinates(out->cm.q0, out->cm.qd0);
     const auto spectrum = runtime::linearized_spectrum(out->cm.dynamics, 0.0, out->cm.q0, out->cm.qd0);
     out->h = 0.95 * runtime::stable_step(runtime::parse_integrator("forward_euler"), spectrum.eigenvalues).h;
     return out;
@@ -114,7 +125,7 @@ BENCHMARK(BM_RhsPartitioned)->Unit(benchmark::kMicrosecond);
 void BM_PartMultibody(benchmark::State& state) {
   Setup& s = setup();
   MidState& m = mid();
-  const mbfe_model_v1& model = *s.cm.solver.model;
+  const mbfe_model_v1& model = *s.cm.assembled->kernels();
   const int nb = model.num_coordinates;
   std::vector<double> M(nb * nb), F(nb), Q(nb);
   for (auto _ : state) {

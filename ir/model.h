@@ -85,7 +85,7 @@ struct BeamPointLoad {
 
 enum class AdjustmentPolicy { kNone, kCap, kPaperEq25, kKeepSlow };
 
-/// Modal adjustment of damping (Section 6 of the paper; method-notes section 2).
+/// Modal adjustment of damping (Section 6 of the paper; docs/damping-adjustment.md).
 struct Adjustment {
   bool present = false;          // the beam has an `adjustment:` block
   double omega_limit = 0.0;      // rad/s
@@ -93,6 +93,8 @@ struct Adjustment {
   double zeta_min = 0.0;         // damping-ratio floor for oscillatory modes
   AdjustmentPolicy policy = AdjustmentPolicy::kCap;
   SourceLoc loc;
+  /// The block is present and changes something (its policy is not `none`).
+  bool active() const { return present && policy != AdjustmentPolicy::kNone; }
 };
 
 enum class MassLumping { kConsistent, kLumped };

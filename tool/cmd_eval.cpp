@@ -4,13 +4,9 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "api/mbfe.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "runtime/fem/beam_system.h"
-#include "frontend/parse_model.h"
-#include "runtime/multibody/contact_constraints.h"
-#include "runtime/multibody/coupled_system.h"
-#include "tool/solver_cache.h"
 
 namespace mbfe::tool {
 
@@ -36,20 +32,6 @@ Examples:
   mbfe eval models/double_pendulum_beam.yaml --q -1.38,-0.93 --qd 0.1,0 --json
 )";
 
-std::vector<double> state_vector(const ParsedArgs& parsed, const std::string& flag, int n) {
-  std::vector<double> v = parsed.numbers(flag).value_or(std::vector<double>(n, 0.0));
-  if (static_cast<int>(v.size()) != n)
-    throw UsageError("--" + flag + " has " + std::to_string(v.size()) + " entries, expected " +
-                     std::to_string(n) + " (one per body, in model order)");
-  return v;
-}
-std::vector<double> beam_vector(const ParsedArgs& parsed, const std::string& flag, int n) {
-  std::vector<double> v = parsed.numbers(flag).value_or(std::vector<double>(n, 0.0));
-  if (static_cast<int>(v.size()) != n)
-    throw UsageError("--" + flag + " has " + std::to_string(v.size()) + " entries, expected " +
-                     std::to_string(n) + " (beam coordinates in contract order)");
-  return v;
-}
 }  // namespace
 
 int cmd_eval(const Args& args) {
@@ -59,63 +41,55 @@ int cmd_eval(const Args& args) {
     return 0;
   }
   if (parsed.positional().size() != 1) throw UsageError("expected one model file (see --help)");
-  const ir::Model model = frontend::load_model_file(parsed.positional()[0]);
-  if (model.bodies.empty())
-    throw UsageError("model '" + model.name + "' has no bodies: nothing to evaluate (try mbfe modal)");
-  if ((parsed.has("qc") || parsed.has("qcd")) && model.contacts.empty())
-    throw UsageError("--qc/--qcd: model '" + model.name + "' has no contacts (no beam coordinates to evaluate)");
-  const int n = static_cast<int>(model.bodies.size());
-  const std::vector<double> q = state_vector(parsed, "q", n);
-  const std::vector<double> qd = state_vector(parsed, "qd", n);
-  const double t = parsed.number("t").value_or(0.0);
+  LoadOptions load;
+  load.quiet = parsed.has("quiet") || parsed.has("json");
+  const Model model = Model::load(parsed.positional()[0], load);
+  State state;
+  state.q = parsed.numbers("q").value_or(std::vector<double>{});
+  state.qd = parsed.numbers("qd").value_or(std::vector<double>{});
+  state.qc = parsed.numbers("qc").value_or(std::vector<double>{});
+  state.qcd = parsed.numbers("qcd").value_or(std::vector<double>{});
+  state.t = parsed.number("t").value_or(0.0);
+  const std::size_t nb = model.ir().bodies.size();
+  for (const auto& [flag, values] : {std::pair<const char*, const std::vector<double>&>{"q", state.q}, {"qd", state.qd}})
+    if (!values.empty() && values.size() != nb)
+      throw UsageError(std::string("--") + flag + " has " + std::to_string(values.size()) + " entries, expected " +
+                       std::to_string(nb) + " (one per body, in model order)");
+  Evaluation e;
+  try {
+    e = model.evaluate(state);
+  } catch (const runtime::ContactError& error) {  // a slider off its beam
+    std::cerr << "mbfe eval: " << error.what() << "\n";
+    return 3;
+  }
 
-  const LoadedSolver solver = load_solver(model, parsed.has("quiet") || parsed.has("json"));
-  std::vector<double> M(static_cast<std::size_t>(n) * n), F(n), Q(n);
-  solver.model->mass_matrix(q.data(), M.data());
-  solver.model->inertial_forces(q.data(), qd.data(), F.data());
-  solver.model->generalized_forces(q.data(), qd.data(), t, Q.data());
-
+  auto rows_of = [](const Eigen::MatrixXd& m) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (Eigen::Index r = 0; r < m.rows(); ++r) {
+      std::vector<double> row(m.cols());
+      for (Eigen::Index c = 0; c < m.cols(); ++c) row[c] = m(r, c);
+      rows.push_back(row);
+    }
+    return rows;
+  };
+  auto list_of = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
   nlohmann::json out;
-  out["M"] = nlohmann::json::array();
-  for (int r = 0; r < n; ++r)
-    out["M"].push_back(std::vector<double>(M.begin() + r * n, M.begin() + (r + 1) * n));
-  out["F"] = F;
-  out["Q"] = Q;
-  if (!model.contacts.empty()) {
-    std::vector<runtime::BeamMesh> meshes;
-    for (const ir::Beam& b : model.beams) meshes.push_back(runtime::beam_mesh(runtime::assemble_beam(b, model.gravity)));
-    const runtime::ContactConstraints cc(*solver.model, meshes);
-    const int nc = cc.num_beam_dofs();
-    const std::vector<double> qc = beam_vector(parsed, "qc", nc);
-    const std::vector<double> qcd = beam_vector(parsed, "qcd", nc);
-    runtime::ConstraintValues cv;
-    try {
-      cc.evaluate(t, q.data(), qc.data(), qd.data(), qcd.data(), cv);
-    } catch (const std::runtime_error& e) {  // a slider off its beam
-      std::cerr << "mbfe eval: " << e.what() << "\n";
-      return 3;
-    }
-    const int m = cc.num_rows();
-    const Eigen::MatrixXd jc = cv.jc_dense(nc);
+  out["M"] = rows_of(e.M);
+  out["F"] = list_of(e.F);
+  out["Q"] = list_of(e.Q);
+  if (e.has_constraints) {
     nlohmann::json c;
-    c["Phi"] = std::vector<double>(cv.phi.data(), cv.phi.data() + m);
-    c["Jb"] = nlohmann::json::array();
-    c["Jc"] = nlohmann::json::array();
-    for (int r = 0; r < m; ++r) {
-      std::vector<double> jb(n), jcr(nc);
-      for (int k = 0; k < n; ++k) jb[k] = cv.jb(r, k);
-      for (int k = 0; k < nc; ++k) jcr[k] = jc(r, k);
-      c["Jb"].push_back(jb);
-      c["Jc"].push_back(jcr);
-    }
-    c["gamma"] = std::vector<double>(cv.gamma.data(), cv.gamma.data() + m);
+    c["Phi"] = list_of(e.phi);
+    c["Jb"] = rows_of(e.jb);
+    c["Jc"] = rows_of(e.jc);
+    c["gamma"] = list_of(e.gamma);
     out["constraints"] = c;
   }
   if (parsed.has("json")) {
     std::cout << out.dump() << "\n";
   } else {
     std::cout << "coordinates:";
-    for (const auto& b : model.bodies) std::cout << " " << b.name;
+    for (const auto& b : model.ir().bodies) std::cout << " " << b.name;
     std::cout << "\nM = " << out["M"].dump() << "\nF = " << out["F"].dump() << "\nQ = " << out["Q"].dump()
               << "\n";
     if (out.contains("constraints"))

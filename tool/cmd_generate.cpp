@@ -5,7 +5,7 @@
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "generator/emit/generate_solver.h"
-#include "tool/file_util.h"
+#include "api/file_util.h"
 #include "frontend/parse_model.h"
 
 namespace mbfe::tool {

@@ -1,6 +1,6 @@
 // `mbfe modal MODEL.yaml [--json] [--all] [--beam NAME] [--modes K]`:
 // modal analysis of each beam and the state-space eigenvalues of eq (28),
-// printed as the paper's Table 1 (text) or as the JSON contract of issue 3.
+// printed as the paper's Table 1 (text) or as JSON.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -8,15 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "api/mbfe.h"
+#include "frontend/parse_model.h"
+#include "runtime/damping/beam_model.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "runtime/damping/modal_adjustment.h"
-#include "tool/coupled_model.h"
 #include "tool/modal_report.h"
-#include "runtime/multibody/multibody_errors.h"
-#include "frontend/parse_model.h"
 #include "tool/plot_spectrum.h"
-#include "runtime/stability/step_limits.h"
 
 namespace mbfe::tool {
 
@@ -79,61 +77,39 @@ const char* policy_name(ir::AdjustmentPolicy p) {
   return "?";
 }
 
-/// The adjusted half of Table 1, when the beam has an adjustment block.
-struct AdjustedResult {
-  bool present = false;
-  runtime::AdjustedModes modes;
-  runtime::StateSpectrum spectrum;
-};
-
-AdjustedResult adjust_beam(const ir::Beam& beam, const BeamModalResult& r) {
-  AdjustedResult out;
-  if (!beam.adjustment.present || beam.adjustment.policy == ir::AdjustmentPolicy::kNone) return out;
-  out.present = true;
-  const auto original = runtime::rayleigh_modes(r.basis.omega, beam.rayleigh_alpha, beam.rayleigh_beta);
-  try {
-    out.modes = runtime::adjust_modes(original, beam.adjustment);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("beam '" + beam.name + "': " + e.what());
-  }
-  out.spectrum = runtime::state_spectrum(out.modes.modes, r.basis.complete);
-  return out;
-}
-
 /// The JSON of one beam; an "adjusted" block goes next to "original".
-nlohmann::json beam_json(const BeamModalResult& r) {
+nlohmann::json beam_json(const runtime::BeamPart& r) {
   nlohmann::json omega = nlohmann::json::array();
   for (Eigen::Index j = 0; j < r.basis.omega.size(); ++j) omega.push_back(r.basis.omega[j]);
   nlohmann::json beam;
-  beam["name"] = r.name;
+  beam["name"] = r.system.name;
   beam["dof"] = r.system.M.rows();
   beam["modal_path"] = r.dense ? "dense" : "sparse";
   beam["natural_frequencies_rad_s"] = std::move(omega);
-  beam["original"] = spectrum_json(r.original);
+  beam["original"] = spectrum_json(r.original_spectrum);
   return beam;
 }
 
-void add_adjusted_json(nlohmann::json& beam, const ir::Beam& b, const AdjustedResult& a) {
-  if (!a.present) return;
-  nlohmann::json block = spectrum_json(a.spectrum);
+void add_adjusted_json(nlohmann::json& beam, const ir::Beam& b, const runtime::BeamPart& a) {
+  if (!a.has_adjustment) return;
+  nlohmann::json block = spectrum_json(a.adjusted_spectrum);
   block["policy"] = policy_name(b.adjustment.policy);
   block["omega_limit"] = b.adjustment.omega_limit;
   block["margin"] = b.adjustment.margin;
   block["zeta_min"] = b.adjustment.zeta_min;
-  block["adjusted_modes"] = a.modes.adjusted;
-  block["floored_modes"] = a.modes.floored;
+  block["adjusted_modes"] = a.adjusted.adjusted;
+  block["floored_modes"] = a.adjusted.floored;
   beam["adjusted"] = std::move(block);
 }
 
-void print_adjusted_text(std::ostream& out, const ir::Beam& b, const BeamModalResult& r,
-                         const AdjustedResult& a, bool all) {
-  if (!a.present) return;
+void print_adjusted_text(std::ostream& out, const ir::Beam& b, const runtime::BeamPart& r, bool all) {
+  if (!r.has_adjustment) return;
   const int dof = static_cast<int>(r.system.M.rows());
   out << "adjusted (policy " << policy_name(b.adjustment.policy) << ", omega_limit " << b.adjustment.omega_limit
       << " rad/s, margin " << b.adjustment.margin << ", zeta_min " << b.adjustment.zeta_min << "): "
-      << a.modes.adjusted << " modes adjusted, " << a.modes.floored << " raised to zeta_min\n";
-  const auto left = spectrum_table_lines(r.original, all);
-  const auto right = spectrum_table_lines(a.spectrum, all);
+      << r.adjusted.adjusted << " modes adjusted, " << r.adjusted.floored << " raised to zeta_min\n";
+  const auto left = spectrum_table_lines(r.original_spectrum, all);
+  const auto right = spectrum_table_lines(r.adjusted_spectrum, all);
   const std::string blank(spectrum_table_width(), ' ');
   const std::string gap = "  |";
   std::string title_left = "original (Table 1, left half)";
@@ -141,31 +117,30 @@ void print_adjusted_text(std::ostream& out, const ir::Beam& b, const BeamModalRe
   out << title_left << gap << "adjusted (Table 1, right half)\n";
   for (std::size_t i = 0; i < std::max(left.size(), right.size()); ++i)
     out << (i < left.size() ? left[i] : blank) << gap << (i < right.size() ? right[i] : "") << "\n";
-  out << "summary (adjusted): " << spectrum_summary(a.spectrum, dof) << "\n";
-  if (a.spectrum.complete && r.original.h_max_forward_euler > 0.0) {
+  out << "summary (adjusted): " << spectrum_summary(r.adjusted_spectrum, dof) << "\n";
+  if (r.adjusted_spectrum.complete && r.original_spectrum.h_max_forward_euler > 0.0) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "forward-Euler h_max gain: %.0fx\n",
-                  a.spectrum.h_max_forward_euler / r.original.h_max_forward_euler);
+                  r.adjusted_spectrum.h_max_forward_euler / r.original_spectrum.h_max_forward_euler);
     out << buf;
   }
 }
 
-void print_beam_text(std::ostream& out, const ir::Beam& b, const BeamModalResult& r, const AdjustedResult& a,
-                     bool all) {
+void print_beam_text(std::ostream& out, const ir::Beam& b, const runtime::BeamPart& r, bool all) {
   const int dof = static_cast<int>(r.system.M.rows());
-  out << "beam '" << r.name << "': " << dof << " DOF, Rayleigh alpha = " << r.system.rayleigh_alpha
+  out << "beam '" << r.system.name << "': " << dof << " DOF, Rayleigh alpha = " << r.system.rayleigh_alpha
       << " 1/s, beta = " << r.system.rayleigh_beta << " s ("
       << (r.dense ? "dense modal analysis, every mode"
                   : "sparse Lanczos, lowest " + std::to_string(r.basis.omega.size()) + " modes")
       << ")\n";
   out << "state-space eigenvalues of eq (28), sorted by modulus (the paper's Table 1):\n";
-  if (a.present) {
-    out << "summary (original): " << spectrum_summary(r.original, dof) << "\n";
-    print_adjusted_text(out, b, r, a, all);
+  if (r.has_adjustment) {
+    out << "summary (original): " << spectrum_summary(r.original_spectrum, dof) << "\n";
+    print_adjusted_text(out, b, r, all);
     return;
   }
-  for (const std::string& line : spectrum_table_lines(r.original, all)) out << line << "\n";
-  out << "summary: " << spectrum_summary(r.original, dof) << "\n";
+  for (const std::string& line : spectrum_table_lines(r.original_spectrum, all)) out << line << "\n";
+  out << "summary: " << spectrum_summary(r.original_spectrum, dof) << "\n";
 }
 
 }  // namespace
@@ -180,7 +155,8 @@ int cmd_modal(const Args& args) {
     throw UsageError("expected one MODEL.yaml, got " +
                      std::to_string(parsed.positional().size()) + " arguments (see --help)");
   }
-  BeamModalOptions options;
+  runtime::BeamAnalysisOptions options;
+  options.sparse_modes = 20;  // large beams: the lowest modes
   if (const auto k = parsed.number("modes")) {
     if (*k < 1 || *k != static_cast<int>(*k)) {
       throw UsageError("--modes: expected a whole number >= 1, got " + *parsed.value("modes"));
@@ -206,13 +182,9 @@ int cmd_modal(const Args& args) {
                      names + ")");
   }
 
-  std::vector<BeamModalResult> results;
-  std::vector<AdjustedResult> adjusted;
+  std::vector<runtime::BeamPart> results;
   try {
-    for (const ir::Beam* b : chosen) {
-      results.push_back(analyse_beam(*b, m.gravity, options));
-      adjusted.push_back(adjust_beam(*b, results.back()));
-    }
+    for (const ir::Beam* b : chosen) results.push_back(runtime::analyse_beam(*b, m.gravity, options));
   } catch (const std::invalid_argument& e) {
     std::cerr << "mbfe modal: " << path << ": " << e.what() << "\n";
     return 2;
@@ -225,15 +197,16 @@ int cmd_modal(const Args& args) {
     SpectrumPlot picture;
     picture.title = "model '" + m.name + "'";
     for (std::size_t i = 0; i < results.size(); ++i) {
-      const std::string prefix = results.size() > 1 ? results[i].name + " " : "";
-      picture.series.push_back({prefix + "original", results[i].original.eigenvalues});
-      if (adjusted[i].present) picture.series.push_back({prefix + "adjusted", adjusted[i].spectrum.eigenvalues});
+      const std::string prefix = results.size() > 1 ? results[i].system.name + " " : "";
+      picture.series.push_back({prefix + "original", results[i].original_spectrum.eigenvalues});
+      if (results[i].has_adjustment)
+        picture.series.push_back({prefix + "adjusted", results[i].adjusted_spectrum.eigenvalues});
     }
     // Default step: the forward-Euler limit of the (first) adjusted spectrum.
     double h = 0.0;
     for (std::size_t i = 0; i < results.size() && h == 0.0; ++i)
-      h = adjusted[i].present ? adjusted[i].spectrum.h_max_forward_euler : 0.0;
-    if (h == 0.0 || !std::isfinite(h)) h = results.front().original.h_max_forward_euler;
+      h = results[i].has_adjustment ? results[i].adjusted_spectrum.h_max_forward_euler : 0.0;
+    if (h == 0.0 || !std::isfinite(h)) h = results.front().original_spectrum.h_max_forward_euler;
     picture.step = step.value_or(h);
     const int status = draw_spectrum_plot(picture, *plot);
     if (status != 0) return status;
@@ -241,20 +214,14 @@ int cmd_modal(const Args& args) {
 
   // A coupled model (bodies + beams): also the linearised, partitioned system
   // at the initial state (runtime/multibody/linearization.h), original and adjusted.
-  const bool coupled = is_coupled(m) && !beam_name;
+  const bool coupled = !m.bodies.empty() && !beam_name;
   runtime::StateSpectrum coupled_original, coupled_adjusted;
   bool coupled_any_adjustment = false;
   if (coupled) {
-    for (const ir::Beam& b : m.beams)
-      coupled_any_adjustment =
-          coupled_any_adjustment || (b.adjustment.present && b.adjustment.policy != ir::AdjustmentPolicy::kNone);
-    try {
-      coupled_original = coupled_spectrum(m, false);
-      if (coupled_any_adjustment) coupled_adjusted = coupled_spectrum(m, true);
-    } catch (const runtime::ContactError& e) {
-      std::cerr << "mbfe modal: " << path << ": at the initial state: " << e.what() << "\n";
-      return 2;
-    }
+    for (const ir::Beam& b : m.beams) coupled_any_adjustment = coupled_any_adjustment || b.adjustment.active();
+    const Model model = Model::load(path);
+    coupled_original = model.spectrum(false).full;
+    if (coupled_any_adjustment) coupled_adjusted = model.spectrum(true).full;
   }
 
   if (parsed.has("json")) {
@@ -269,7 +236,7 @@ int cmd_modal(const Args& args) {
     root["beams"] = nlohmann::json::array();
     for (std::size_t i = 0; i < results.size(); ++i) {
       nlohmann::json beam = beam_json(results[i]);
-      add_adjusted_json(beam, *chosen[i], adjusted[i]);
+      add_adjusted_json(beam, *chosen[i], results[i]);
       root["beams"].push_back(std::move(beam));
     }
     std::cout << root.dump(2) << "\n";
@@ -277,7 +244,7 @@ int cmd_modal(const Args& args) {
   }
   for (size_t i = 0; i < results.size(); ++i) {
     if (i > 0) std::cout << "\n";
-    print_beam_text(std::cout, *chosen[i], results[i], adjusted[i], parsed.has("all"));
+    print_beam_text(std::cout, *chosen[i], results[i], parsed.has("all"));
   }
   if (coupled) {
     const int dof = static_cast<int>(coupled_original.eigenvalues.size()) / 2;

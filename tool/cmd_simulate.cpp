@@ -1,18 +1,10 @@
-// mbfe simulate MODEL.yaml [--integrator NAME] [--step H] [--t-end T] [--out FILE.csv]
-#include <Eigen/Core>
+// mbfe simulate MODEL.yaml [--integrator NAME] [--step H] [--t-end T] [--out FILE.csv] ...
 #include <iostream>
 
+#include "api/mbfe.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/coupled_model.h"
 #include "tool/csv_output.h"
-#include "runtime/integrators/integrator.h"
-#include "runtime/integrators/simulation_driver.h"
-#include "frontend/parse_model.h"
-#include "runtime/multibody/multibody_errors.h"
-#include "runtime/multibody/rigid_system.h"
-#include "tool/simulate_options.h"
-#include "tool/solver_cache.h"
 
 namespace mbfe::tool {
 
@@ -67,67 +59,40 @@ std::vector<std::string> split_commas(const std::string& text) {
   }
 }
 
-int simulate_rigid(const ir::Model& model, const SimulateOptions& options, std::int64_t every) {
-  runtime::IntegratorSpec integrator;
+// The request from the flags, the model's `simulation:` block filling in.
+runtime::SimulationRequest request_of(const ParsedArgs& parsed, const ir::Model& model) {
+  runtime::SimulationRequest request;
   try {
-    integrator = runtime::parse_integrator(options.integrator);
+    request.integrator = runtime::parse_integrator(parsed.value("integrator").value_or(model.simulation.integrator));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  if (integrator.kind == runtime::IntegratorKind::kGeneralizedAlpha)
-    throw UsageError("generalized_alpha needs a linear second-order (beam) model; for rigid models use "
-                     "rk4, trapezoid, backward_euler, ...");
-  if (options.rho_inf) integrator.rho_inf = *options.rho_inf;
-
-  const LoadedSolver solver = load_solver(model, options.quiet);
-  runtime::RigidSystem system(*solver.model, runtime::body_inertias(model));
-  const int n = system.num_coordinates();
-  Eigen::VectorXd y0(2 * n);
-  for (int i = 0; i < n; ++i) {
-    y0[i] = model.initial.q[i];
-    y0[n + i] = model.initial.qd[i];
+  request.step = parsed.number("step").value_or(model.simulation.step);
+  request.t_end = parsed.number("t-end").value_or(model.simulation.t_end);
+  if (!(request.step > 0)) throw UsageError("--step must be > 0");
+  if (!(request.t_end > 0)) throw UsageError("--t-end must be > 0");
+  request.quiet = parsed.has("quiet");
+  if (const auto rho = parsed.number("rho-inf")) {
+    if (*rho < 0 || *rho > 1) throw UsageError("--rho-inf must be in [0, 1]");
+    request.integrator.rho_inf = *rho;
   }
-
-  CsvOutput csv(options.out.value_or(""));
-  std::vector<std::string> columns{"t"};
-  for (int i = 0; i < 2 * n; ++i) columns.push_back(system.name(i));
-  csv.header(columns);
-  std::vector<double> row(1 + 2 * n);
-
-  runtime::SimulationOptions run;
-  run.step = options.step;
-  run.t_end = options.t_end;
-  run.every = every;
-  run.quiet = options.quiet;
-  const runtime::SimulationResult result =
-      runtime::run_simulation(system, integrator, y0, run, [&](double t, const Eigen::VectorXd& y) {
-        row[0] = t;
-        for (int i = 0; i < 2 * n; ++i) row[1 + i] = y[i];
-        csv.row(row.data(), row.size());
-      });
-  csv.flush();
-  switch (result.status) {
-    case runtime::SimulationStatus::kCompleted:
-      if (!options.quiet)
-        std::cerr << "mbfe: " << model.name << ": " << result.steps << " " << result.integrator
-                  << " steps of " << result.step << " s to t = " << result.t << " s in "
-                  << result.wall_seconds << " s; " << csv.rows() << " rows written"
-                  << (options.out ? " to " + *options.out : std::string()) << "\n";
-      return 0;
-    case runtime::SimulationStatus::kDiverged:
-      std::cerr << "mbfe simulate: " << runtime::describe(result) << "; " << csv.rows()
-                << " rows written up to there\n";
-      return 3;
-    case runtime::SimulationStatus::kInterrupted:
-      std::cerr << "mbfe simulate: interrupted at t = " << result.t << " s; " << csv.rows()
-                << " rows written\n";
-      return 3;
-    case runtime::SimulationStatus::kFailed:
-      std::cerr << "mbfe simulate: failed at t = " << result.t << " s: " << result.message << "; "
-                << csv.rows() << " rows written up to there\n";
-      return 3;
+  if (const auto adjust = parsed.value("adjust")) {
+    if (*adjust != "on" && *adjust != "off") throw UsageError("--adjust takes on or off, got '" + *adjust + "'");
+    request.adjust = *adjust == "on";
   }
-  return 1;
+  if (const auto probe = parsed.value("probe"))
+    for (const std::string& text : split_commas(*probe)) request.probes.push_back(runtime::parse_probe(text));
+  if (const auto every = parsed.number("every")) {
+    if (*every < 1 || *every != static_cast<double>(static_cast<std::int64_t>(*every)))
+      throw UsageError("--every must be a positive integer");
+    request.every = static_cast<std::int64_t>(*every);
+  }
+  const std::string formulation = parsed.value("formulation").value_or("partitioned");
+  if (formulation != "partitioned" && formulation != "augmented")
+    throw UsageError("--formulation takes partitioned or augmented, got '" + formulation + "'");
+  request.formulation = formulation == "augmented" ? runtime::CoupledFormulation::kAugmented
+                                                   : runtime::CoupledFormulation::kPartitioned;
+  return request;
 }
 
 }  // namespace
@@ -140,41 +105,33 @@ int cmd_simulate(const Args& args) {
     return 0;
   }
   if (parsed.positional().size() != 1) throw UsageError("expected one model file (see --help)");
-  const ir::Model model = frontend::load_model_file(parsed.positional()[0]);
+  LoadOptions load;
+  load.quiet = parsed.has("quiet");
+  const Model model = Model::load(parsed.positional()[0], load);
+  const runtime::SimulationRequest request = request_of(parsed, model.ir());
+  if (parsed.has("formulation") && model.kind() != runtime::ModelKind::kCoupled)
+    throw UsageError("--formulation applies to coupled models (bodies, beams and contacts) only");
+  model.assembled();  // a beam the analysis refuses is bad input before the output file is opened
 
-  SimulateOptions options;
-  options.integrator = parsed.value("integrator").value_or(model.simulation.integrator);
-  options.step = parsed.number("step").value_or(model.simulation.step);
-  options.t_end = parsed.number("t-end").value_or(model.simulation.t_end);
-  if (!(options.step > 0)) throw UsageError("--step must be > 0");
-  if (!(options.t_end > 0)) throw UsageError("--t-end must be > 0");
-  options.out = parsed.value("out");
-  options.quiet = parsed.has("quiet");
-  options.rho_inf = parsed.number("rho-inf");
-  if (options.rho_inf && (*options.rho_inf < 0 || *options.rho_inf > 1))
-    throw UsageError("--rho-inf must be in [0, 1]");
-  if (const auto adjust = parsed.value("adjust")) {
-    if (*adjust != "on" && *adjust != "off") throw UsageError("--adjust takes on or off, got '" + *adjust + "'");
-    options.adjust = *adjust == "on";
+  const auto out = parsed.value("out");
+  CsvOutput csv(out.value_or(""));
+  CsvObserver observer(csv);
+  const runtime::SimulationReport report = model.simulate(request, observer);
+  csv.flush();
+  const runtime::SimulationResult& run = report.run;
+  const std::string where = out ? " to " + *out : std::string();
+  const std::string variant = report.variant.empty() ? "" : " (" + report.variant + ")";
+  if (report.message.empty()) {
+    if (!request.quiet)
+      std::cerr << "mbfe: " << model.ir().name << variant << ": " << run.steps << " " << run.integrator
+                << " steps of " << run.step << " s to t = " << run.t << " s in " << run.wall_seconds << " s; "
+                << csv.rows() << " rows written" << where << "\n";
+    return 0;
   }
-  if (const auto probe = parsed.value("probe")) options.probes = split_commas(*probe);
-  std::int64_t every = 0;
-  if (const auto e = parsed.number("every")) {
-    if (*e < 1 || *e != static_cast<double>(static_cast<std::int64_t>(*e)))
-      throw UsageError("--every must be a positive integer");
-    every = static_cast<std::int64_t>(*e);
-  }
-  options.every = every;
-
-  const std::string formulation = parsed.value("formulation").value_or("partitioned");
-  if (formulation != "partitioned" && formulation != "augmented")
-    throw UsageError("--formulation takes partitioned or augmented, got '" + formulation + "'");
-  if (is_coupled(model)) return simulate_coupled(model, options, formulation == "augmented");
-  if (parsed.has("formulation")) throw UsageError("--formulation applies to coupled models (bodies, beams and contacts) only");
-  if (model.bodies.empty()) return simulate_beams(model, options);
-  if (options.adjust || !options.probes.empty())
-    throw UsageError("--adjust and --probe apply to beam models only");
-  return simulate_rigid(model, options, every);
+  std::cerr << "mbfe simulate: " << report.message << (report.variant.empty() ? "" : "; " + report.variant) << "; "
+            << csv.rows() << " rows written" << where
+            << (run.status == runtime::SimulationStatus::kInterrupted ? "" : " up to there") << "\n";
+  return 3;
 }
 
 }  // namespace mbfe::tool

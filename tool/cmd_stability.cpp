@@ -2,9 +2,9 @@
 // integrator for the original and the adjusted model (beam models; coupled
 // models through their linearised, partitioned system at the initial state;
 // rigid-only models through their linearised ODE at the initial state).
+#include <algorithm>
 #include <cmath>
 #include <complex>
-#include <algorithm>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -13,16 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "api/mbfe.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/coupled_model.h"
-#include "runtime/damping/beam_model.h"
-#include "runtime/multibody/linearization.h"
-#include "runtime/multibody/multibody_errors.h"
-#include "runtime/multibody/rigid_system.h"
-#include "frontend/parse_model.h"
-#include "tool/solver_cache.h"
-#include "runtime/stability/step_limits.h"
 
 namespace mbfe::tool {
 
@@ -66,29 +59,16 @@ Example:
   mbfe stability models/double_pendulum.yaml
 )";
 
-nlohmann::json limits_json(const runtime::StateSpectrum& spectrum) {
+nlohmann::json limits_json(const std::vector<runtime::StepLimitRow>& rows, bool adjusted) {
   nlohmann::json out = nlohmann::json::object();
-  for (const auto& m : runtime::advisor_integrators()) {
-    const runtime::StepLimit lim = runtime::stable_step(m, spectrum.eigenvalues);
+  for (const runtime::StepLimitRow& row : rows) {
+    const runtime::StepLimit& lim = adjusted ? *row.adjusted : row.original;
     if (lim.kind == runtime::StepLimit::Kind::kFinite)
-      out[m.name] = lim.h;
+      out[row.integrator.name] = lim.h;
     else
-      out[m.name] = lim.text();
+      out[row.integrator.name] = lim.text();
   }
   return out;
-}
-
-// The rigid model's ODE linearised at the initial state (model.initial).
-runtime::SplitSpectrum rigid_spectrum(const ir::Model& m) {
-  const LoadedSolver solver = load_solver(m, /*quiet=*/true);
-  runtime::RigidSystem system(*solver.model, runtime::body_inertias(m));
-  const int n = system.num_coordinates();
-  Eigen::VectorXd y0(2 * n);
-  for (int i = 0; i < n; ++i) {
-    y0[i] = m.initial.q[i];
-    y0[n + i] = m.initial.qd[i];
-  }
-  return runtime::split_growing(runtime::linearized_spectrum(system, 0.0, y0));
 }
 
 std::string cell(const runtime::StepLimit& lim) {
@@ -108,62 +88,25 @@ int cmd_stability(const Args& args) {
     throw UsageError("expected one MODEL.yaml, got " + std::to_string(parsed.positional().size()) +
                      " arguments (see --help)");
   const std::string& path = parsed.positional()[0];
-  const ir::Model m = frontend::load_model_file(path);
-  if (m.beams.empty() && m.bodies.empty()) {
-    std::cerr << "mbfe stability: " << path << ": model '" << m.name << "' has no bodies and no beams\n";
-    return 2;
-  }
-  // Beam models: the beams' modal spectra. Coupled models (bodies + beams):
-  // the linearised, partitioned system at the initial state; rigid-only
-  // models: the linearised ODE there (runtime/multibody/linearization.h).
-  const bool coupled = is_coupled(m);
-  const bool rigid = m.beams.empty();
-  runtime::StateSpectrum original, adjusted;
-  bool any_adjustment = false;
-  int dof = 0, growing = 0;
-  try {
-    if (rigid) {
-      const runtime::SplitSpectrum rs = rigid_spectrum(m);
-      original = rs.limiting;
-      growing = rs.growing;
-      dof = static_cast<int>(m.bodies.size());
-    } else if (coupled) {
-      for (const auto& b : m.beams)
-        any_adjustment = any_adjustment || (b.adjustment.present && b.adjustment.policy != ir::AdjustmentPolicy::kNone);
-      // Linearised away from an equilibrium too (gravity on the bodies): the
-      // same split as for a rigid model.
-      const runtime::StateSpectrum full = coupled_spectrum(m, false);
-      dof = static_cast<int>(full.eigenvalues.size()) / 2;
-      const runtime::SplitSpectrum split = runtime::split_growing(full);
-      original = split.limiting;
-      growing = split.growing;
-      if (any_adjustment) {
-        const runtime::SplitSpectrum split_adjusted = runtime::split_growing(coupled_spectrum(m, true));
-        adjusted = split_adjusted.limiting;
-        growing = std::max(growing, split_adjusted.growing);
-      }
-    } else {
-      runtime::BeamModel beams = runtime::analyse_beams(m);
-      original = beams.original;
-      adjusted = beams.adjusted;
-      any_adjustment = beams.any_adjustment;
-      dof = beams.dof;
-    }
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "mbfe stability: " << path << ": " << e.what() << "\n";
-    return 2;
-  } catch (const runtime::ContactError& e) {
-    std::cerr << "mbfe stability: " << path << ": at the initial state: " << e.what() << "\n";
-    return 2;
-  } catch (const runtime::SingularMassMatrixError& e) {
-    std::cerr << "mbfe stability: " << path << ": at the initial state: " << e.what() << "\n";
-    return 2;
-  }
+  const Model model = Model::load(path);
+  const runtime::ModelKind kind = model.kind();
+  const bool coupled = kind == runtime::ModelKind::kCoupled;
+  const bool rigid = kind == runtime::ModelKind::kRigid;
+  const runtime::ModelSpectrum original_spectrum = model.spectrum(false);
+  const bool any_adjustment = model.assembled().has_adjustment();
+  runtime::ModelSpectrum adjusted_spectrum;
+  if (any_adjustment) adjusted_spectrum = model.spectrum(true);
+  const runtime::StateSpectrum& original = original_spectrum.limiting;
+  const runtime::StateSpectrum& adjusted = adjusted_spectrum.limiting;
+  const int dof = original_spectrum.coordinates;
+  const int growing = std::max(original_spectrum.growing, adjusted_spectrum.growing);
+  const std::vector<runtime::StepLimitRow> limits =
+      runtime::step_limit_table(original_spectrum, any_adjustment ? &adjusted_spectrum : nullptr);
 
   if (parsed.has("json")) {
     nlohmann::json root;
-    root["original"] = limits_json(original);
-    root["adjusted"] = any_adjustment ? limits_json(adjusted) : nlohmann::json(nullptr);
+    root["original"] = limits_json(limits, false);
+    root["adjusted"] = any_adjustment ? limits_json(limits, true) : nlohmann::json(nullptr);
     std::cout << root.dump(2) << "\n";
     return 0;
   }
@@ -175,15 +118,15 @@ int cmd_stability(const Args& args) {
     return o.str();
   };
   if (rigid)
-    std::cout << "model '" << m.name << "': rigid, " << dof << " DOF, " << 2 * dof
+    std::cout << "model '" << model.ir().name << "': rigid, " << dof << " DOF, " << 2 * dof
               << " state eigenvalues of the ODE linearised at the initial state\n"
               << "  (a local estimate: the limits change as the motion moves away from that state; "
                  "a rigid model has no damping adjustment)\n";
   if (coupled)
-    std::cout << "model '" << m.name << "': linearised, partitioned coupled system at the initial state, " << 2 * dof
+    std::cout << "model '" << model.ir().name << "': linearised, partitioned coupled system at the initial state, " << 2 * dof
               << " state eigenvalues (" << dof << " independent coordinates)\n";
   else if (!rigid)
-    std::cout << "model '" << m.name << "': " << dof << " DOF, " << 2 * dof << " state eigenvalues\n";
+    std::cout << "model '" << model.ir().name << "': " << dof << " DOF, " << 2 * dof << " state eigenvalues\n";
   if (growing > 0)
     std::cout << "  " << growing << " eigenvalue" << (growing == 1 ? " has" : "s have")
               << " Re > 0: the motion leaves the initial state (not an equilibrium), and every "
@@ -196,11 +139,11 @@ int cmd_stability(const Args& args) {
   std::cout << "\nlargest stable step\n";
   std::cout << std::left << std::setw(20) << "integrator" << std::setw(18) << "original"
             << (any_adjustment ? "adjusted" : "") << "\n";
-  for (const auto& integ : runtime::advisor_integrators()) {
-    const auto o = runtime::stable_step(integ, original.eigenvalues);
-    std::cout << std::left << std::setw(20) << integ.name << std::setw(18) << cell(o);
-    if (any_adjustment) {
-      const auto a = runtime::stable_step(integ, adjusted.eigenvalues);
+  for (const runtime::StepLimitRow& row : limits) {
+    const runtime::StepLimit& o = row.original;
+    std::cout << std::left << std::setw(20) << row.integrator.name << std::setw(18) << cell(o);
+    if (row.adjusted) {
+      const runtime::StepLimit& a = *row.adjusted;
       std::cout << std::setw(18) << cell(a);
       if (o.kind == runtime::StepLimit::Kind::kFinite && a.kind == runtime::StepLimit::Kind::kFinite) {
         char buf[32];

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "runtime/simulation/simulate.h"
+
 namespace mbfe::tool {
 
 class CsvOutput {
@@ -28,6 +30,18 @@ class CsvOutput {
   bool owned_ = false;
   std::size_t rows_ = 0;
   std::string path_;
+};
+
+/// The rows of a simulation into a CsvOutput: the layout's columns as the
+/// header, then one line per output row.
+class CsvObserver : public runtime::SimulationObserver {
+ public:
+  explicit CsvObserver(CsvOutput& out) : out_(out) {}
+  void begin(const runtime::OutputLayout& layout) override { out_.header(layout.columns); }
+  void row(const runtime::OutputRow& row) override { out_.row(row.values.data(), row.values.size()); }
+
+ private:
+  CsvOutput& out_;
 };
 
 }  // namespace mbfe::tool

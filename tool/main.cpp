@@ -8,7 +8,8 @@
 
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "frontend/parse_model.h"
+#include "ir/model_error.h"
+#include "runtime/simulation/invalid_input.h"
 
 namespace {
 
@@ -58,6 +59,9 @@ int main(int argc, char** argv) {
     return it->second(args);
   } catch (const mbfe::ir::ModelError& e) {
     std::cerr << e.what() << "\n";
+    return 2;
+  } catch (const mbfe::runtime::InvalidInput& e) {
+    std::cerr << "mbfe " << name << ": " << e.what() << "\n";
     return 2;
   } catch (const UsageError& e) {
     std::cerr << "mbfe " << name << ": " << e.what() << "\n";

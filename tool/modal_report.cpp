@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <limits>
 
-#include "runtime/modal/modal_analysis.h"
 
 namespace mbfe::tool {
 
@@ -36,22 +35,6 @@ std::string row_line(const runtime::SpectrumRow& r) {
 }
 
 }  // namespace
-
-BeamModalResult analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity,
-                             const BeamModalOptions& options) {
-  BeamModalResult result;
-  result.name = beam.name;
-  result.system = runtime::assemble_beam(beam, gravity);
-  const int n = static_cast<int>(result.system.M.rows());
-  runtime::ModalOptions modal;
-  modal.dense_limit = options.dense_limit;
-  result.dense = n <= options.dense_limit;
-  modal.num_modes = result.dense ? 0 : std::min(options.sparse_modes, n - 1);
-  result.basis = runtime::modal_analysis(result.system, modal);
-  result.original =
-      runtime::rayleigh_spectrum(result.basis, beam.rayleigh_alpha, beam.rayleigh_beta);
-  return result;
-}
 
 nlohmann::json spectrum_json(const runtime::StateSpectrum& spectrum) {
   nlohmann::json ev = nlohmann::json::array();

@@ -1,38 +1,15 @@
-// What `mbfe modal` computes for one beam and how it prints it: the paper's
-// Table 1 (text) and the JSON contract of issue 3. One spectrum block is built
-// by one function, so an "adjusted" block can sit next to "original".
+// How `mbfe modal` prints a spectrum: the paper's Table 1 (text) and the JSON
+// blocks of `mbfe modal --json`. One spectrum block is built by one function,
+// so an "adjusted" block can sit next to "original".
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "runtime/fem/beam_system.h"
-#include "runtime/modal/modal_basis.h"
 #include "runtime/modal/state_spectrum.h"
-#include "ir/model.h"
 
 namespace mbfe::tool {
-
-struct BeamModalOptions {
-  int dense_limit = 2000;  // DOFs; above it the sparse path finds `sparse_modes`
-  int sparse_modes = 20;   // lowest modes for large beams
-};
-
-/// One beam, assembled and analysed.
-struct BeamModalResult {
-  std::string name;
-  runtime::BeamSystem system;
-  runtime::ModalBasis basis;          // every mode (dense) or the lowest few (sparse)
-  runtime::StateSpectrum original;    // Rayleigh damping, eq (28)
-  bool dense = true;                  // which modal path was used
-};
-
-/// Assembles `beam` and analyses it (dense for small beams, sparse Lanczos for
-/// the lowest modes of large ones). @throws std::invalid_argument on a beam
-/// the assembly rejects.
-BeamModalResult analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity,
-                             const BeamModalOptions& options = {});
 
 /// {"eigenvalues": [[re, im], ...], "oscillatory_pairs": n,
 ///  "h_max": {"forward_euler": h}, "complete": bool}; h is null when the

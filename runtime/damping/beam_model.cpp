@@ -1,5 +1,6 @@
 #include "runtime/damping/beam_model.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -7,43 +8,57 @@
 
 namespace mbfe::runtime {
 
-BeamModel analyse_beams(const ir::Model& model, int dense_limit) {
+BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamAnalysisOptions& options) {
+  BeamPart part;
+  part.system = assemble_beam(beam, gravity);
+  const int n = static_cast<int>(part.system.M.rows());
+  part.dense = n <= options.dense_limit;
+  if (!part.dense && options.sparse_modes <= 0)
+    throw std::invalid_argument("beam '" + beam.name + "' has " + std::to_string(n) +
+                                " DOFs; time integration and the stability advisor use every mode and "
+                                "handle at most " +
+                                std::to_string(options.dense_limit) + " per beam");
+  ModalOptions mo;
+  mo.dense_limit = options.dense_limit;
+  mo.num_modes = part.dense ? 0 : std::min(options.sparse_modes, n - 1);
+  part.basis = modal_analysis(part.system, mo);
+  part.original = rayleigh_modes(part.basis.omega, part.system.rayleigh_alpha, part.system.rayleigh_beta);
+  part.has_adjustment = beam.adjustment.active();
+  try {
+    ir::Adjustment none;
+    none.policy = ir::AdjustmentPolicy::kNone;
+    part.adjusted = adjust_modes(part.original, part.has_adjustment ? beam.adjustment : none);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("beam '" + beam.name + "': " + e.what());
+  }
+  part.original_spectrum = state_spectrum(part.original, part.basis.complete);
+  part.adjusted_spectrum = state_spectrum(part.adjusted.modes, part.basis.complete);
+  return part;
+}
+
+BeamModel analyse_beams(const ir::Model& model, const BeamAnalysisOptions& options) {
   BeamModel out;
   std::vector<ModalDynamics> all_original, all_adjusted;
+  bool complete = true;
   for (const ir::Beam& b : model.beams) {
-    BeamPart part;
-    part.system = assemble_beam(b, model.gravity);
-    const int n = static_cast<int>(part.system.M.rows());
-    if (n > dense_limit)
-      throw std::invalid_argument("beam '" + b.name + "' has " + std::to_string(n) +
-                                  " DOFs; time integration and the stability advisor use every mode and "
-                                  "handle at most " +
-                                  std::to_string(dense_limit) + " per beam");
-    ModalOptions mo;
-    mo.dense_limit = dense_limit;
-    part.basis = modal_analysis(part.system, mo);
-    part.original = rayleigh_modes(part.basis.omega, part.system.rayleigh_alpha, part.system.rayleigh_beta);
-    part.has_adjustment = b.adjustment.present && b.adjustment.policy != ir::AdjustmentPolicy::kNone;
-    try {
-      ir::Adjustment none;
-      none.policy = ir::AdjustmentPolicy::kNone;
-      part.adjusted = adjust_modes(part.original, part.has_adjustment ? b.adjustment : none);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("beam '" + b.name + "': " + e.what());
-    }
+    BeamPart part = analyse_beam(b, model.gravity, options);
     part.offset = out.dof;
-    out.dof += n;
+    out.dof += static_cast<int>(part.system.M.rows());
     out.any_adjustment = out.any_adjustment || part.has_adjustment;
+    complete = complete && part.basis.complete;
     all_original.insert(all_original.end(), part.original.begin(), part.original.end());
     all_adjusted.insert(all_adjusted.end(), part.adjusted.modes.begin(), part.adjusted.modes.end());
     out.beams.push_back(std::move(part));
   }
-  out.original = state_spectrum(all_original);
-  out.adjusted = state_spectrum(all_adjusted);
+  out.original = state_spectrum(all_original, complete);
+  out.adjusted = state_spectrum(all_adjusted, complete);
   return out;
 }
 
 std::unique_ptr<ModalBeamOde> modal_beam_ode(const BeamModel& beams, bool adjusted) {
+  for (const BeamPart& b : beams.beams)
+    if (!b.basis.complete)
+      throw std::invalid_argument("beam '" + b.system.name + "': only its lowest modes are known; the modal form needs every mode");
   const int n = beams.dof;
   ModalBasis basis;
   basis.omega.resize(n);

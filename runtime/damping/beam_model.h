@@ -1,28 +1,42 @@
-// The beams of a model (no bodies), assembled, analysed, adjusted and ready to
-// integrate: what `mbfe simulate`, `mbfe stability` and the benchmarks share.
-// Beams without contacts are independent, so the whole model is block
-// diagonal: its modes are the union of the beams' modes.
+// The beams of a model, assembled, analysed and adjusted: what simulation, the
+// stability advisor and `mbfe modal` share. Beams without contacts are
+// independent, so the beams of a model are block diagonal: their modes are the
+// union of the beams' modes.
 #pragma once
 
 #include <memory>
 #include <vector>
 
+#include "ir/model.h"
 #include "runtime/damping/beam_ode.h"
 #include "runtime/damping/modal_adjustment.h"
 #include "runtime/fem/beam_system.h"
 #include "runtime/modal/modal_basis.h"
 #include "runtime/modal/state_spectrum.h"
-#include "ir/model.h"
 
 namespace mbfe::runtime {
 
+/// How far the modal analysis of a beam goes.
+struct BeamAnalysisOptions {
+  /// Beams up to this many DOFs get every mode (dense path).
+  int dense_limit = 2000;
+  /// Beams above dense_limit: 0 = refused (time integration and the stability
+  /// advisor use every mode); k > 0 = the lowest k modes by sparse Lanczos,
+  /// a partial spectrum (what `mbfe modal` shows of a large beam).
+  int sparse_modes = 0;
+};
+
+/// One beam: its finite-element system, modes and modal dynamics.
 struct BeamPart {
   BeamSystem system;
-  ModalBasis basis;                    // every mode (dense path)
-  std::vector<ModalDynamics> original; // Rayleigh
-  AdjustedModes adjusted;              // by the beam's adjustment block; == original without one
-  bool has_adjustment = false;
-  int offset = 0;                      // first coordinate of this beam in the model's q
+  ModalBasis basis;                     // every mode (dense path) or the lowest few (sparse)
+  bool dense = true;                    // which modal path gave `basis`
+  std::vector<ModalDynamics> original;  // Rayleigh, one per mode of `basis`
+  AdjustedModes adjusted;               // by the beam's adjustment block; == original without one
+  bool has_adjustment = false;          // the beam's adjustment block is active
+  StateSpectrum original_spectrum;      // eq (28) of `original` (partial if the basis is)
+  StateSpectrum adjusted_spectrum;      // eq (28) of `adjusted`
+  int offset = 0;                       // first coordinate of this beam in the model's q_c
 };
 
 struct BeamModel {
@@ -33,13 +47,18 @@ struct BeamModel {
   bool any_adjustment = false;
 };
 
-/// Assembles and analyses every beam of `model` (dense modal analysis: at most
-/// `dense_limit` DOFs per beam). @throws std::invalid_argument for a beam the
-/// assembly rejects, a beam above dense_limit (message says so) or a bad
-/// adjustment block.
-BeamModel analyse_beams(const ir::Model& model, int dense_limit = 2000);
+/// Assembles and analyses one beam (under `gravity`, m/s^2).
+/// @throws std::invalid_argument for a beam the assembly rejects, a beam above
+/// options.dense_limit when options.sparse_modes is 0 (the message says so), or
+/// a bad adjustment block (each message names the beam).
+BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamAnalysisOptions& options = {});
+
+/// Every beam of `model`, in model order, with their offsets and the union of
+/// their spectra. @throws as analyse_beam.
+BeamModel analyse_beams(const ir::Model& model, const BeamAnalysisOptions& options = {});
 
 /// The whole model in modal coordinates, original or adjusted modes.
+/// @throws std::invalid_argument if some beam has a partial basis.
 std::unique_ptr<ModalBeamOde> modal_beam_ode(const BeamModel& beams, bool adjusted);
 
 /// The static state [q_s; 0] in the modal coordinates of modal_beam_ode

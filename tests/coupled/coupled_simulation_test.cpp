@@ -1,4 +1,4 @@
-// Coupled simulations (issue 5): partitioned versus augmented, |Phi| of the
+// Coupled simulations: partitioned versus augmented, |Phi| of the
 // partitioned formulation, and the paper's coupled result (Section 7): the
 // adjusted platform model steps stably with forward Euler at 0.95 x the limit
 // of its linearised, partitioned spectrum and diverges at 1.05 x; the original
@@ -15,7 +15,9 @@
 #include <string>
 
 #include "tests/coupled/cli_run.h"
-#include "tool/coupled_model.h"
+#include "api/mbfe.h"
+#include "api/solver_cache.h"
+#include "runtime/simulation/coupled_beams.h"
 #include "runtime/integrators/integrator.h"
 #include "runtime/integrators/simulation_driver.h"
 #include "frontend/parse_model.h"
@@ -29,6 +31,25 @@ using runtime::SimulationStatus;
 
 std::string model_path(const std::string& name) { return std::string(MBFE_SOURCE_DIR) + "/models/" + name; }
 
+// A coupled model with the dynamics of one run and its initial coordinates.
+struct CoupledModel {
+  std::shared_ptr<runtime::AssembledModel> assembled;
+  std::shared_ptr<runtime::CoupledDynamics> dynamics;
+  Eigen::VectorXd q0, qd0;
+};
+
+CoupledModel load_coupled(const ir::Model& model, bool adjusted) {
+  CoupledModel cm;
+  cm.assembled = std::make_shared<runtime::AssembledModel>(model, load_solver(model, /*quiet=*/true).model);
+  cm.dynamics = cm.assembled->make_dynamics(adjusted);
+  cm.assembled->initial_coordinates(cm.q0, cm.qd0);
+  return cm;
+}
+
+runtime::StateSpectrum coupled_spectrum(const ir::Model& model, bool adjusted) {
+  return runtime::model_spectrum(*load_coupled(model, adjusted).assembled, adjusted).full;
+}
+
 struct Final {
   Eigen::VectorXd q, qd;
   runtime::ContactReport report;
@@ -36,7 +57,7 @@ struct Final {
   double phi_max_seen = 0.0;
 };
 
-Final simulate(tool::CoupledModel& cm, bool augmented, const std::string& integrator, double h, double t_end) {
+Final simulate(CoupledModel& cm, bool augmented, const std::string& integrator, double h, double t_end) {
   std::unique_ptr<runtime::CoupledSystem> sys;
   if (augmented)
     sys = std::make_unique<runtime::AugmentedSystem>(cm.dynamics);
@@ -80,7 +101,7 @@ constexpr double kClosureTol = 1e-10;
 
 TEST(CoupledSimulation, PartitionedAndAugmentedAgreeOnDoublePendulumBeam) {
   const ir::Model model = frontend::load_model_file(model_path("double_pendulum_beam.yaml"));
-  tool::CoupledModel cm = tool::load_coupled(model, true, true);
+  CoupledModel cm = load_coupled(model, true);
   const Final p = simulate(cm, false, "rk4", 1e-5, 0.05);
   const Final a = simulate(cm, true, "rk4", 1e-5, 0.05);
   ASSERT_EQ(p.result.status, SimulationStatus::kCompleted) << p.result.message;
@@ -101,7 +122,7 @@ TEST(CoupledSimulation, PartitionedKeepsConstraintsClosed) {
   for (const char* name : {"double_pendulum_beam.yaml", "paper_platform.yaml"}) {
     SCOPED_TRACE(name);
     const ir::Model model = frontend::load_model_file(model_path(name));
-    tool::CoupledModel cm = tool::load_coupled(model, true, true);
+    CoupledModel cm = load_coupled(model, true);
     const Final p = simulate(cm, false, "rk4", 1e-5, 0.02);
     ASSERT_EQ(p.result.status, SimulationStatus::kCompleted) << p.result.message;
     EXPECT_LT(p.phi_max_seen, kClosureTol);
@@ -117,8 +138,8 @@ TEST(CoupledSimulation, PartitionedKeepsConstraintsClosed) {
 TEST(CoupledSimulation, PaperPlatformAdjustedStableAtLimitAndOriginalDivergesAt1p6e8) {
   const ir::Model model = frontend::load_model_file(model_path("paper_platform.yaml"));
   const runtime::IntegratorSpec fe = runtime::parse_integrator("forward_euler");
-  const runtime::StateSpectrum adj = tool::coupled_spectrum(model, true);
-  const runtime::StateSpectrum orig = tool::coupled_spectrum(model, false);
+  const runtime::StateSpectrum adj = coupled_spectrum(model, true);
+  const runtime::StateSpectrum orig = coupled_spectrum(model, false);
   const runtime::StepLimit h_adj = runtime::stable_step(fe, adj.eigenvalues);
   const runtime::StepLimit h_orig = runtime::stable_step(fe, orig.eigenvalues);
   ASSERT_EQ(h_adj.kind, runtime::StepLimit::Kind::kFinite);
@@ -145,7 +166,7 @@ TEST(CoupledSimulation, PaperPlatformAdjustedStableAtLimitAndOriginalDivergesAt1
   ASSERT_EQ(md.status, 0) << md.out;
   EXPECT_EQ(nlohmann::json::parse(md.out).at("coupled").at("states").get<int>(), 402);
 
-  tool::CoupledModel adjusted = tool::load_coupled(model, true, true);
+  CoupledModel adjusted = load_coupled(model, true);
   const Final stable = simulate(adjusted, false, "forward_euler", 0.95 * h_adj.h, 0.1);
   EXPECT_EQ(stable.result.status, SimulationStatus::kCompleted) << stable.result.message;
   EXPECT_LT(stable.phi_max_seen, kClosureTol);
@@ -155,7 +176,7 @@ TEST(CoupledSimulation, PaperPlatformAdjustedStableAtLimitAndOriginalDivergesAt1
               stable.result.status == SimulationStatus::kCompleted ? "completed" : "FAILED", stable.result.t,
               unstable.result.t);
 
-  tool::CoupledModel original = tool::load_coupled(model, false, true);
+  CoupledModel original = load_coupled(model, false);
   const Final orig_run = simulate(original, false, "forward_euler", 1.6e-8, 4e-5);
   EXPECT_NE(orig_run.result.status, SimulationStatus::kCompleted);
   std::printf("[ coupled  ] original, forward Euler at 1.6e-8 s: stopped at t = %.4g s (%lld steps)\n",
@@ -205,9 +226,9 @@ TEST(CoupledSimulation, LowRankBeamAccelerationMatchesForceAndSolve) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (const runtime::BeamPart& b : beams.beams) {
-    const auto accel = tool::beam_acceleration(b, true);
+    const auto accel = runtime::beam_acceleration(b, true);
     ASSERT_TRUE(static_cast<bool>(accel));
-    const auto force = tool::beam_force(b, true);
+    const auto force = runtime::beam_force(b, true);
     const int n = static_cast<int>(b.system.M.rows());
     Eigen::VectorXd q(n), qd(n), f(n), a(n);
     for (int i = 0; i < n; ++i) {
@@ -221,7 +242,7 @@ TEST(CoupledSimulation, LowRankBeamAccelerationMatchesForceAndSolve) {
     EXPECT_LT((a - ref).cwiseAbs().maxCoeff(), kAccelerationRelTol * ref.cwiseAbs().maxCoeff()) << b.system.name;
   }
   // Beams without an adjustment (or --adjust off) take the force + solve path.
-  EXPECT_FALSE(static_cast<bool>(tool::beam_acceleration(beams.beams[0], false)));
+  EXPECT_FALSE(static_cast<bool>(runtime::beam_acceleration(beams.beams[0], false)));
 }
 
 }  // namespace

@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "frontend/parse_model.h"
-#include "tool/solver_cache.h"
+#include "api/solver_cache.h"
 
 namespace mbfe {
 namespace {
@@ -122,7 +122,7 @@ TEST(GeneratedRigidDynamics, MatchesNumericalOracleOnRandomTrees) {
   std::uniform_real_distribution<double> angle(-3.0, 3.0), rate(-2.0, 2.0);
   for (int bodies : {1, 3, 6}) {
     const ir::Model m = frontend::parse_model_text(random_tree_yaml(rng, bodies), "random_tree.yaml");
-    const tool::LoadedSolver solver = tool::load_solver(m, /*quiet=*/true);
+    const LoadedSolver solver = load_solver(m, /*quiet=*/true);
     const int n = bodies;
     for (int trial = 0; trial < 30; ++trial) {
       Eigen::VectorXd q(n), qd(n);
@@ -202,7 +202,7 @@ TEST(GeneratedRigidDynamics, BranchedMixedTreeMatchesOracleInBothKernels) {
   ASSERT_LT(prismatic, n);
   ASSERT_GE(unrelated_pairs, 5);
 
-  const tool::LoadedSolver solver = tool::load_solver(m, /*quiet=*/true);
+  const LoadedSolver solver = load_solver(m, /*quiet=*/true);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> angle(-3.0, 3.0), rate(-2.0, 2.0);
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;

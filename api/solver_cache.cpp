@@ -1,4 +1,4 @@
-#include "tool/solver_cache.h"
+#include "api/solver_cache.h"
 
 #include <dlfcn.h>
 #include <sys/wait.h>
@@ -11,11 +11,12 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "api/file_util.h"
+#include "frontend/sha256.h"
 #include "generator/emit/generate_solver.h"
-#include "tool/file_util.h"
 #include "jit_config.h"
 
-namespace mbfe::tool {
+namespace mbfe {
 
 namespace fs = std::filesystem;
 
@@ -46,7 +47,7 @@ bool entry_is_intact(const fs::path& entry) {
   if (!fs::is_regular_file(entry / kLibraryName, ec)) return false;
   try {
     const std::string expected = read_file((entry / (std::string(kLibraryName) + ".sha256")).string());
-    return expected == sha256_hex(read_file((entry / kLibraryName).string()));
+    return expected == frontend::sha256_hex(read_file((entry / kLibraryName).string()));
   } catch (const std::exception&) {
     return false;
   }
@@ -119,7 +120,7 @@ LoadedSolver load_solver(const ir::Model& model, bool quiet) {
   std::string key_material = std::string("mbfe ") + gen::generator_version() + "\n" + compiler +
                              "\n" + MBFE_JIT_FLAGS + "\n";
   for (const auto& file : sources.files) key_material += file.name + "\n" + file.text;
-  const std::string key = sha256_hex(key_material).substr(0, 32);
+  const std::string key = frontend::sha256_hex(key_material).substr(0, 32);
 
   const fs::path cache(solver_cache_dir());
   const fs::path entry = cache / (model.name + "-" + key);
@@ -169,7 +170,7 @@ LoadedSolver load_solver(const ir::Model& model, bool quiet) {
                                "):\n" + output);
     }
     write_file_atomically((staging / (std::string(kLibraryName) + ".sha256")).string(),
-                          sha256_hex(read_file(library.string())));
+                          frontend::sha256_hex(read_file(library.string())));
     fs::rename(staging, entry, ec);  // atomic; fails if another process got there first
     if (ec) {
       fs::remove_all(staging, ec);
@@ -187,4 +188,4 @@ LoadedSolver load_solver(const ir::Model& model, bool quiet) {
   return result;
 }
 
-}  // namespace mbfe::tool
+}  // namespace mbfe

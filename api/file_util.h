@@ -3,7 +3,7 @@
 
 #include <string>
 
-namespace mbfe::tool {
+namespace mbfe {
 
 /// Writes `text` to `path` through a temporary file in the same folder and a
 /// rename, so the file is either the old one or the whole new one.
@@ -13,7 +13,4 @@ void write_file_atomically(const std::string& path, const std::string& text);
 /// Reads a whole file. @throws std::runtime_error naming the path on failure.
 std::string read_file(const std::string& path);
 
-/// Lowercase hex SHA-256 of `bytes`.
-std::string sha256_hex(const std::string& bytes);
-
-}  // namespace mbfe::tool
+}  // namespace mbfe

@@ -18,10 +18,10 @@
 
 #include <string>
 
-#include "runtime/abi/mbfe_model_abi.h"
 #include "ir/model.h"
+#include "runtime/abi/mbfe_model_abi.h"
 
-namespace mbfe::tool {
+namespace mbfe {
 
 struct LoadedSolver {
   const mbfe_model_v1* model = nullptr;  // owned by the loaded library (never unloaded)
@@ -40,4 +40,4 @@ std::string solver_cache_dir();
 /// (nothing is left behind in the cache).
 LoadedSolver load_solver(const ir::Model& model, bool quiet);
 
-}  // namespace mbfe::tool
+}  // namespace mbfe

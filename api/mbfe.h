@@ -1,0 +1,129 @@
+// The public C++ API of mbfe (docs/api.md): load a model with its solver,
+// evaluate its equations, get its spectrum and stable steps, simulate it.
+//
+//   #include "api/mbfe.h"
+//
+//   const mbfe::Model model = mbfe::Model::load("models/paper_platform.yaml");
+//   mbfe::runtime::SimulationRequest request;
+//   request.integrator = mbfe::runtime::parse_integrator("rk4");
+//   request.step = 2e-5;
+//   request.t_end = 1.0;
+//   MyObserver observer;  // a runtime::SimulationObserver: begin(layout), row(row)
+//   const mbfe::runtime::SimulationReport report = model.simulate(request, observer);
+//
+// A Model is cheap to copy (it shares its immutable parts) and safe to use
+// from several threads at once: every call builds the workspace it writes.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ir/model.h"
+#include "ir/model_error.h"
+#include "runtime/abi/mbfe_model_abi.h"
+#include "runtime/damping/beam_model.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/multibody/multibody_errors.h"
+#include "runtime/simulation/assembled_model.h"
+#include "runtime/simulation/invalid_input.h"
+#include "runtime/simulation/simulate.h"
+#include "runtime/stability/model_spectrum.h"
+
+namespace mbfe {
+
+struct LoadOptions {
+  /// No line on stderr about compiling or reusing the solver.
+  bool quiet = true;
+  /// How far the beams' modal analysis goes (simulation and the stability
+  /// advisor need every mode: at most 2000 DOFs per beam by default).
+  runtime::BeamAnalysisOptions beams;
+};
+
+/// M(q), F(q, q'), Q(q, q', t) of the rigid part at one state and, for a model
+/// with contacts, the constraints Phi, J_b = dPhi/dq_b, J_c = dPhi/dq_c and
+/// gamma = -(dJ/dt) q' (rows stacked over the contacts in file order: 2 per
+/// pin, 1 per slider_pin; J_c over every beam coordinate).
+struct Evaluation {
+  Eigen::MatrixXd M;  // nb x nb
+  Eigen::VectorXd F, Q;
+  bool has_constraints = false;
+  Eigen::VectorXd phi;    // m
+  Eigen::MatrixXd jb;     // m x nb
+  Eigen::MatrixXd jc;     // m x nc
+  Eigen::VectorXd gamma;  // m
+};
+
+/// A state for evaluate(): rigid coordinates and rates (one per body, model
+/// order), beam coordinates and rates (every beam's free DOFs, model order),
+/// time. Empty vectors mean zeros.
+struct State {
+  std::vector<double> q, qd, qc, qcd;
+  double t = 0.0;  // s
+};
+
+class Model {
+ public:
+  /// Reads a model file and gets its solver: generated and compiled into the
+  /// run-time cache on first use ($MBFE_CACHE_DIR, default ~/.cache/mbfe),
+  /// loaded from it afterwards.
+  /// @throws ir::ModelError (file:line:col) for a bad model file;
+  ///         std::runtime_error with the compiler's message if compiling fails.
+  static Model load(const std::string& path, const LoadOptions& options = {});
+
+  /// The same from model text in memory; `display_path` names it in messages.
+  static Model parse(const std::string& text, const std::string& display_path, const LoadOptions& options = {});
+
+  /// A model file with a solver linked into the program (mbfe_add_model):
+  /// `mbfe_model_<name>()`. @throws ir::ModelError for a bad file, or when the
+  /// solver was generated from another model or another version of the file
+  /// (its SHA-256 differs).
+  static Model with_solver(const std::string& path, const mbfe_model_v1* solver);
+
+  /// An IR built by the program itself, with its solver (null for a model
+  /// without bodies). @throws runtime::InvalidInput if the solver does not fit.
+  static Model from_ir(ir::Model model, const mbfe_model_v1* solver, const LoadOptions& options = {});
+
+  const ir::Model& ir() const;
+  runtime::ModelKind kind() const;
+  /// The generated solver; null for a model without bodies.
+  const mbfe_model_v1* solver() const;
+  /// Where the solver was loaded from (empty when linked or absent), and
+  /// whether this load compiled it.
+  const std::string& solver_library() const;
+  bool solver_compiled_now() const;
+
+  /// The model assembled for the numerics (beams assembled and analysed on
+  /// first use). @throws runtime::InvalidInput for a beam the analysis refuses.
+  const runtime::AssembledModel& assembled() const;
+
+  /// M, F, Q and the constraints at `state`. @throws runtime::InvalidInput for
+  /// a model without bodies or vectors of the wrong size;
+  /// runtime::SliderOffBeamError when a slider is off its beam.
+  Evaluation evaluate(const State& state) const;
+
+  /// The spectrum, original or adjusted (runtime/stability/model_spectrum.h).
+  /// @throws runtime::InvalidInput (adjusted without an adjustment block, a
+  ///         fault at the initial state).
+  runtime::ModelSpectrum spectrum(bool adjusted) const;
+
+  /// The stable step of every integrator of the advisor, original and (when a
+  /// beam has an adjustment block) adjusted.
+  std::vector<runtime::StepLimitRow> step_limits() const;
+
+  /// Runs `request` (runtime/simulation/simulate.h); rows go to `observer`.
+  /// @throws runtime::InvalidInput for a request this model cannot run.
+  runtime::SimulationReport simulate(const runtime::SimulationRequest& request,
+                                     runtime::SimulationObserver& observer) const;
+
+ private:
+  struct Shared;  // the IR, the solver and the assembled model (model.cpp)
+  explicit Model(std::shared_ptr<const Shared> shared) : shared_(std::move(shared)) {}
+  static Model make(ir::Model model, const mbfe_model_v1* solver, std::string library, bool compiled_now,
+                    const LoadOptions& options);
+  std::shared_ptr<const Shared> shared_;
+};
+
+}  // namespace mbfe

@@ -1,0 +1,161 @@
+#include <mutex>
+
+#include "api/mbfe.h"
+#include "api/solver_cache.h"
+#include "frontend/parse_model.h"
+#include "runtime/fem/beam_system.h"
+#include "runtime/multibody/contact_constraints.h"
+#include "runtime/multibody/coupled_system.h"
+#include "runtime/multibody/rigid_system.h"
+
+namespace mbfe {
+
+struct Model::Shared {
+  ir::Model ir;
+  runtime::ModelKind kind = runtime::ModelKind::kRigid;
+  const mbfe_model_v1* solver = nullptr;
+  std::string solver_library;
+  bool compiled_now = false;
+  runtime::BeamAnalysisOptions beam_options;
+  // Built on first use: the beams' modal analysis is the expensive part, and
+  // evaluate() does not need it.
+  mutable std::mutex assembled_mutex;
+  mutable std::shared_ptr<const runtime::AssembledModel> assembled;
+};
+
+Model Model::make(ir::Model model, const mbfe_model_v1* solver, std::string library, bool compiled_now,
+                  const LoadOptions& options) {
+  auto shared = std::make_shared<Shared>();
+  shared->kind = runtime::model_kind(model);
+  if (!model.bodies.empty()) {
+    if (!solver) throw runtime::InvalidInput("model '" + model.name + "' has bodies: it needs its generated solver");
+    if (solver->abi_version != MBFE_MODEL_ABI_VERSION)
+      throw runtime::InvalidInput("the solver of '" + model.name + "' has ABI version " +
+                                  std::to_string(solver->abi_version) + ", expected " +
+                                  std::to_string(MBFE_MODEL_ABI_VERSION) + " (regenerate it)");
+    if (solver->model_name != model.name || solver->num_coordinates != static_cast<int>(model.bodies.size()))
+      throw runtime::InvalidInput("the solver '" + std::string(solver->model_name) + "' (" +
+                                  std::to_string(solver->num_coordinates) +
+                                  " coordinates) is not the solver of model '" + model.name + "' (" +
+                                  std::to_string(model.bodies.size()) + " bodies)");
+    shared->solver = solver;
+  }
+  shared->ir = std::move(model);
+  shared->solver_library = std::move(library);
+  shared->compiled_now = compiled_now;
+  shared->beam_options = options.beams;
+  return Model(std::move(shared));
+}
+
+namespace {
+
+// The solver of a model with bodies, from the run-time cache.
+LoadedSolver cached_solver(const ir::Model& model, const LoadOptions& options) {
+  if (model.bodies.empty()) return {};
+  return load_solver(model, options.quiet);
+}
+
+}  // namespace
+
+Model Model::load(const std::string& path, const LoadOptions& options) {
+  ir::Model model = frontend::load_model_file(path);
+  const LoadedSolver solver = cached_solver(model, options);
+  return make(std::move(model), solver.model, solver.library_path, solver.compiled_now, options);
+}
+
+Model Model::parse(const std::string& text, const std::string& display_path, const LoadOptions& options) {
+  ir::Model model = frontend::parse_model_text(text, display_path);
+  const LoadedSolver solver = cached_solver(model, options);
+  return make(std::move(model), solver.model, solver.library_path, solver.compiled_now, options);
+}
+
+Model Model::with_solver(const std::string& path, const mbfe_model_v1* solver) {
+  ir::Model model = frontend::load_model_file(path);
+  if (solver && model.source_sha256 != solver->model_sha256)
+    throw ir::ModelError(path, {},
+                         "the linked solver '" + std::string(solver->model_name) +
+                             "' was generated from another version of this file (sha256 " + solver->model_sha256 +
+                             ", the file's is " + model.source_sha256 + "); rebuild it");
+  return make(std::move(model), solver, "", false, {});
+}
+
+Model Model::from_ir(ir::Model model, const mbfe_model_v1* solver, const LoadOptions& options) {
+  return make(std::move(model), solver, "", false, options);
+}
+
+const ir::Model& Model::ir() const { return shared_->ir; }
+runtime::ModelKind Model::kind() const { return shared_->kind; }
+const mbfe_model_v1* Model::solver() const { return shared_->solver; }
+const std::string& Model::solver_library() const { return shared_->solver_library; }
+bool Model::solver_compiled_now() const { return shared_->compiled_now; }
+
+const runtime::AssembledModel& Model::assembled() const {
+  std::lock_guard<std::mutex> lock(shared_->assembled_mutex);
+  if (!shared_->assembled)
+    shared_->assembled =
+        std::make_shared<const runtime::AssembledModel>(shared_->ir, shared_->solver, shared_->beam_options);
+  return *shared_->assembled;
+}
+
+namespace {
+
+Eigen::VectorXd state_vector(const std::vector<double>& values, int n, const char* name, const char* what) {
+  if (values.empty()) return Eigen::VectorXd::Zero(n);
+  if (static_cast<int>(values.size()) != n)
+    throw runtime::InvalidInput(std::string(name) + " has " + std::to_string(values.size()) + " entries, expected " +
+                                std::to_string(n) + " (" + what + ")");
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), n);
+}
+
+}  // namespace
+
+Evaluation Model::evaluate(const State& state) const {
+  const ir::Model& model = shared_->ir;
+  if (!shared_->solver)
+    throw runtime::InvalidInput("model '" + model.name + "' has no bodies: nothing to evaluate (try mbfe modal)");
+  const int nb = static_cast<int>(model.bodies.size());
+  const Eigen::VectorXd q = state_vector(state.q, nb, "q", "one per body, in model order");
+  const Eigen::VectorXd qd = state_vector(state.qd, nb, "qd", "one per body, in model order");
+  Evaluation out;
+  runtime::RigidTerms terms;
+  runtime::evaluate_rigid_terms(*shared_->solver, q, qd, state.t, terms);
+  out.M = terms.M;
+  out.F = terms.F;
+  out.Q = terms.Q;
+  if (model.contacts.empty()) {
+    if (!state.qc.empty() || !state.qcd.empty())
+      throw runtime::InvalidInput("qc/qcd: model '" + model.name +
+                                  "' has no contacts (no beam coordinates to evaluate)");
+    return out;
+  }
+  std::vector<runtime::BeamMesh> meshes;
+  for (const ir::Beam& b : model.beams) meshes.push_back(runtime::beam_mesh(runtime::assemble_beam(b, model.gravity)));
+  const runtime::ContactConstraints constraints(*shared_->solver, meshes);
+  const int nc = constraints.num_beam_dofs();
+  const Eigen::VectorXd qc = state_vector(state.qc, nc, "qc", "beam coordinates in contract order");
+  const Eigen::VectorXd qcd = state_vector(state.qcd, nc, "qcd", "beam coordinates in contract order");
+  runtime::ConstraintValues cv;
+  constraints.evaluate(state.t, q.data(), qc.data(), qd.data(), qcd.data(), cv);
+  out.has_constraints = true;
+  out.phi = cv.phi;
+  out.jb = cv.jb;
+  out.jc = cv.jc_dense(nc);
+  out.gamma = cv.gamma;
+  return out;
+}
+
+runtime::ModelSpectrum Model::spectrum(bool adjusted) const { return runtime::model_spectrum(assembled(), adjusted); }
+
+std::vector<runtime::StepLimitRow> Model::step_limits() const {
+  const runtime::ModelSpectrum original = spectrum(false);
+  if (!assembled().has_adjustment()) return runtime::step_limit_table(original, nullptr);
+  const runtime::ModelSpectrum adjusted = spectrum(true);
+  return runtime::step_limit_table(original, &adjusted);
+}
+
+runtime::SimulationReport Model::simulate(const runtime::SimulationRequest& request,
+                                          runtime::SimulationObserver& observer) const {
+  return runtime::simulate(assembled(), request, observer);
+}
+
+}  // namespace mbfe

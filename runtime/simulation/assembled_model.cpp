@@ -1,0 +1,67 @@
+#include "runtime/simulation/assembled_model.h"
+
+#include <string>
+
+#include "runtime/simulation/coupled_beams.h"
+#include "runtime/simulation/invalid_input.h"
+
+namespace mbfe::runtime {
+
+ModelKind model_kind(const ir::Model& model) {
+  if (model.bodies.empty() && model.beams.empty())
+    throw InvalidInput("model '" + model.name + "' has neither bodies nor beams");
+  if (model.beams.empty()) return ModelKind::kRigid;
+  if (model.bodies.empty()) return ModelKind::kBeams;
+  return ModelKind::kCoupled;
+}
+
+AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, const BeamAnalysisOptions& beams)
+    : model_(std::move(model)), kind_(model_kind(model_)) {
+  if (!model_.bodies.empty()) {
+    if (!kernels)
+      throw InvalidInput("model '" + model_.name + "' has bodies: it needs its generated solver");
+    if (kernels->model_name != model_.name ||
+        kernels->num_coordinates != static_cast<int>(model_.bodies.size()))
+      throw InvalidInput("the solver '" + std::string(kernels->model_name) + "' (" +
+                         std::to_string(kernels->num_coordinates) + " coordinates) is not the solver of model '" +
+                         model_.name + "' (" + std::to_string(model_.bodies.size()) + " bodies)");
+    kernels_ = kernels;
+    bodies_ = body_inertias(model_);
+  }
+  try {
+    beams_ = analyse_beams(model_, beams);
+  } catch (const std::invalid_argument& e) {
+    throw InvalidInput(model_.source_path + ": " + e.what());
+  }
+  if (kind_ == ModelKind::kCoupled) {
+    original_beams_ = coupled_beams(beams_, false);
+    if (beams_.any_adjustment) adjusted_beams_ = coupled_beams(beams_, true);
+  }
+}
+
+bool AssembledModel::resolve_adjusted(std::optional<bool> asked) const {
+  const bool adjusted = asked.value_or(beams_.any_adjustment);
+  if (adjusted && !beams_.any_adjustment)
+    throw InvalidInput("--adjust on: no beam of '" + model_.name +
+                       "' has an `adjustment:` block (e.g. adjustment: {omega_limit: 1.0e5, margin: 0.1})");
+  return adjusted;
+}
+
+std::shared_ptr<CoupledDynamics> AssembledModel::make_dynamics(bool adjusted) const {
+  if (kind_ != ModelKind::kCoupled)
+    throw InvalidInput("model '" + model_.name + "' is not a coupled model (bodies and beams)");
+  resolve_adjusted(adjusted);  // no adjusted beams without an adjustment block
+  return std::make_shared<CoupledDynamics>(*kernels_, adjusted ? adjusted_beams_ : original_beams_, bodies_);
+}
+
+void AssembledModel::initial_coordinates(Eigen::VectorXd& q, Eigen::VectorXd& qd) const {
+  const int nb = static_cast<int>(model_.bodies.size());
+  q = Eigen::VectorXd::Zero(nb + beams_.dof);
+  qd = Eigen::VectorXd::Zero(nb + beams_.dof);
+  for (int i = 0; i < nb; ++i) {
+    q[i] = model_.initial.q[i];
+    qd[i] = model_.initial.qd[i];
+  }
+}
+
+}  // namespace mbfe::runtime

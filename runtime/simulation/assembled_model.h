@@ -1,0 +1,75 @@
+// A model put together for the numerics: its IR, its generated kernels, its
+// beams assembled and analysed (original and adjusted), and, for a coupled
+// model, the beams as the coupled dynamics sees them. simulate() and
+// model_spectrum() work on it. Built once and constant afterwards; everything
+// a run writes into (CoupledDynamics, the systems) is made fresh per run, so
+// one AssembledModel can serve several runs, also from several threads.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "ir/model.h"
+#include "runtime/abi/mbfe_model_abi.h"
+#include "runtime/damping/beam_model.h"
+#include "runtime/multibody/coupled_system.h"
+#include "runtime/multibody/rigid_system.h"
+
+namespace mbfe::runtime {
+
+/// kRigid: bodies only; kBeams: beams only; kCoupled: bodies and beams
+/// (contacts optional).
+enum class ModelKind { kRigid, kBeams, kCoupled };
+
+/// @throws InvalidInput for a model with neither bodies nor beams.
+ModelKind model_kind(const ir::Model& model);
+
+class AssembledModel {
+ public:
+  /// @param kernels the generated solver of `model`: required when the model
+  ///        has bodies (it must outlive this object), ignored otherwise.
+  /// @throws InvalidInput if kernels are missing or belong to another model
+  ///         (other name or coordinate count), or for a beam the assembly or
+  ///         the modal analysis rejects (the message names the beam).
+  AssembledModel(ir::Model model, const mbfe_model_v1* kernels, const BeamAnalysisOptions& beams = {});
+
+  ModelKind kind() const { return kind_; }
+  const ir::Model& ir() const { return model_; }
+  /// Null for a beam-only model.
+  const mbfe_model_v1* kernels() const { return kernels_; }
+  const BeamModel& beams() const { return beams_; }
+  /// Some beam has an active `adjustment:` block.
+  bool has_adjustment() const { return beams_.any_adjustment; }
+
+  /// Whether a run uses the adjusted beams: `asked`, or, when absent, whether
+  /// some beam has an active adjustment block.
+  /// @throws InvalidInput when adjusted beams are asked for and no beam has an
+  ///         active adjustment block.
+  bool resolve_adjusted(std::optional<bool> asked) const;
+
+  /// Mass properties per body, for the message of a singular mass matrix.
+  const std::vector<BodyInertia>& bodies() const { return bodies_; }
+
+  /// A fresh coupled dynamics (its workspace belongs to one run), with the
+  /// original or adjusted beams. Coupled models only.
+  std::shared_ptr<CoupledDynamics> make_dynamics(bool adjusted) const;
+
+  /// The initial coordinates of the model's `initial:` block, [q_b; q_c]:
+  /// the rigid coordinates in model order, then every beam's free DOFs at rest
+  /// and undeformed (zero). q and qd are resized (nb + nc entries).
+  void initial_coordinates(Eigen::VectorXd& q, Eigen::VectorXd& qd) const;
+
+ private:
+  ir::Model model_;
+  const mbfe_model_v1* kernels_ = nullptr;
+  ModelKind kind_;
+  BeamModel beams_;
+  std::vector<BodyInertia> bodies_;
+  // The beams as the coupled dynamics sees them (their callbacks own their
+  // scratch; each make_dynamics() copies them).
+  std::vector<CoupledBeam> original_beams_, adjusted_beams_;
+};
+
+}  // namespace mbfe::runtime

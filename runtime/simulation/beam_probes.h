@@ -1,0 +1,40 @@
+// Probes: the transverse displacement of a beam at a position along it, as an
+// output column ("beam1@0.5"), for models with beams.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "ir/model.h"
+#include "runtime/damping/beam_model.h"
+#include "runtime/fem/beam_system.h"
+
+namespace mbfe::runtime {
+
+/// A probe as asked for: BEAM@S, S in m along the beam.
+struct ProbeSpec {
+  std::string label;  // as written, e.g. "beam1@0.5": the column name
+  std::string beam;
+  double s = 0.0;     // m
+};
+
+/// Parses "BEAM@S". @throws InvalidInput naming the text for any other form.
+ProbeSpec parse_probe(const std::string& text);
+
+/// A probe resolved on the assembled beams: w(s) = sum_a weights.w[a] q_c[offset + free_index[a]].
+struct BeamProbe {
+  std::string label;
+  int beam = -1;    // index into the model's beams
+  int offset = 0;   // first q_c coordinate of the beam
+  BeamPointWeights weights;
+  /// The displacement (or, given rates, its rate) from the beam coordinates
+  /// q_c (every beam's free DOFs, model order).
+  double value(const double* qc) const;
+};
+
+/// @throws InvalidInput naming the probe for an unknown beam or S off the beam.
+std::vector<BeamProbe> resolve_probes(const std::vector<ProbeSpec>& specs, const ir::Model& model,
+                                      const BeamModel& beams);
+
+}  // namespace mbfe::runtime

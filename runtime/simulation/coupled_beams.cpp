@@ -1,0 +1,81 @@
+#include "runtime/simulation/coupled_beams.h"
+
+#include <memory>
+
+#include "runtime/damping/low_rank_kernel.h"
+
+namespace mbfe::runtime {
+
+BeamForceFn beam_force(const BeamPart& beam, bool adjusted) {
+  const BeamSystem& sys = beam.system;
+  if (!adjusted || !beam.has_adjustment) return sparse_beam_force(sys.C, sys.K);
+  auto na = std::make_shared<NodalAdjusted>(
+      beam.adjusted.uniform ? low_rank_adjusted(sys.M, beam.basis, beam.adjusted)
+                            : eq27_adjusted(sys.M, beam.basis, beam.adjusted));
+  auto M = std::make_shared<Eigen::SparseMatrix<double>>(sys.M);
+  const int n = static_cast<int>(sys.M.rows());
+  const int m = static_cast<int>(na->U.cols());
+  // C qd + K q = S_C qd + S_K q + M (s_C qd + s_K q) + U (d_C .* U^T qd + d_K .* U^T q):
+  // one sparse product with M and one pass over U each way (the fused form of
+  // NodalOperator::apply for the two operators). Scratch captured by value:
+  // one callback per CoupledDynamics, one thread.
+  Eigen::VectorXd z(n), ux(m), uv(m), r(m);
+  return [na, M, z, ux, uv, r](const Eigen::Ref<const Eigen::VectorXd>& q,
+                               const Eigen::Ref<const Eigen::VectorXd>& qd,
+                               Eigen::Ref<Eigen::VectorXd> f) mutable {
+    const NodalOperator& C = na->C;
+    const NodalOperator& K = na->K;
+    z = C.s * qd + K.s * q;
+    f.noalias() = *M * z;
+    if (C.S.size() > 0) f.noalias() += C.S * qd;
+    if (K.S.size() > 0) f.noalias() += K.S * q;
+    if (na->U.cols() > 0) {
+      r.setZero();
+      if (C.d.size() > 0) {
+        uv.noalias() = na->U.transpose() * qd;
+        r += C.d.cwiseProduct(uv);
+      }
+      if (K.d.size() > 0) {
+        ux.noalias() = na->U.transpose() * q;
+        r += K.d.cwiseProduct(ux);
+      }
+      f.noalias() += na->U * r;
+    }
+  };
+}
+
+BeamForceFn beam_acceleration(const BeamPart& beam, bool adjusted) {
+  const BeamSystem& sys = beam.system;
+  if (!adjusted || !beam.has_adjustment || !beam.adjusted.uniform) return {};
+  const NodalAdjusted na = low_rank_adjusted(sys.M, beam.basis, beam.adjusted);
+  if (na.C.S.size() > 0 || na.K.S.size() > 0) return {};
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(sys.M);
+  if (ldlt.info() != Eigen::Success) return {};
+  const Eigen::VectorXd minv_p = ldlt.solve(sys.P);
+  const Eigen::Index m = na.U.cols();
+  auto low_rank = std::make_shared<LowRankCorrection>();
+  low_rank->U = na.U;
+  low_rank->phi = na.phi;
+  // An operator without a modal part has an empty d: no correction.
+  low_rank->d_C = na.C.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.C.d;
+  low_rank->d_K = na.K.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.K.d;
+  check_shape(*low_rank);
+  const double s_C = na.C.s, s_K = na.K.s;
+  return [low_rank, minv_p, s_C, s_K](const Eigen::Ref<const Eigen::VectorXd>& q,
+                                      const Eigen::Ref<const Eigen::VectorXd>& qd,
+                                      Eigen::Ref<Eigen::VectorXd> a) {
+    a = minv_p - s_C * qd - s_K * q;
+    if (low_rank->U.cols() > 0) subtract_low_rank(*low_rank, q.data(), qd.data(), a.data());
+  };
+}
+
+std::vector<CoupledBeam> coupled_beams(const BeamModel& beams, bool adjusted) {
+  std::vector<CoupledBeam> out;
+  for (const BeamPart& b : beams.beams) {
+    out.push_back(coupled_beam(b.system, beam_force(b, adjusted)));
+    out.back().acceleration = beam_acceleration(b, adjusted);
+  }
+  return out;
+}
+
+}  // namespace mbfe::runtime

@@ -1,0 +1,47 @@
+// simulate() for a model of bodies only: y = [q; q'], y' = [q'; M^-1 (Q - F)].
+#include "runtime/multibody/rigid_system.h"
+#include "runtime/simulation/invalid_input.h"
+#include "runtime/simulation/run_diagnosis.h"
+#include "runtime/simulation/runs.h"
+
+namespace mbfe::runtime::detail {
+
+SimulationReport run_rigid(const AssembledModel& model, const SimulationRequest& request,
+                           SimulationObserver& observer) {
+  RigidSystem system(*model.kernels(), model.bodies());
+  const int n = system.num_coordinates();
+  Eigen::VectorXd q0, qd0;
+  model.initial_coordinates(q0, qd0);
+  Eigen::VectorXd y0(2 * n);
+  y0 << q0, qd0;
+
+  OutputLayout layout;
+  layout.columns.push_back("t");
+  layout.units.push_back("s");
+  for (int i = 0; i < 2 * n; ++i) {
+    layout.columns.push_back(system.name(i));
+    const ir::Body& body = model.ir().bodies[i % n];
+    layout.units.push_back(i < n ? coordinate_unit(body) : rate_unit(body));
+  }
+  observer.begin(layout);
+  std::vector<double> values(1 + 2 * n);
+  Eigen::VectorXd q(n), qd(n);
+
+  SimulationReport report;
+  try {
+    report.run = run_simulation(system, request.integrator, y0, driver_options(request),
+                                [&](double t, const Eigen::VectorXd& y) {
+                                  values[0] = t;
+                                  for (int i = 0; i < 2 * n; ++i) values[1 + i] = y[i];
+                                  q = y.head(n);
+                                  qd = y.tail(n);
+                                  observer.row(OutputRow{t, values, q, qd});
+                                });
+  } catch (const std::invalid_argument& e) {
+    throw InvalidInput(e.what());
+  }
+  report.message = diagnose_run(report.run, std::nullopt);
+  return report;
+}
+
+}  // namespace mbfe::runtime::detail

@@ -1,0 +1,69 @@
+#include "runtime/stability/model_spectrum.h"
+
+#include "runtime/multibody/linearization.h"
+#include "runtime/multibody/multibody_errors.h"
+#include "runtime/simulation/invalid_input.h"
+
+namespace mbfe::runtime {
+
+namespace {
+
+ModelSpectrum from_linearization(const StateSpectrum& full, int coordinates) {
+  ModelSpectrum out;
+  out.full = full;
+  const SplitSpectrum split = split_growing(full);
+  out.limiting = split.limiting;
+  out.growing = split.growing;
+  out.coordinates = coordinates;
+  out.linearized = true;
+  return out;
+}
+
+}  // namespace
+
+ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
+  adjusted = model.resolve_adjusted(adjusted);
+  Eigen::VectorXd q0, qd0;
+  model.initial_coordinates(q0, qd0);
+  try {
+    switch (model.kind()) {
+      case ModelKind::kBeams: {
+        ModelSpectrum out;
+        out.full = adjusted ? model.beams().adjusted : model.beams().original;
+        out.limiting = out.full;
+        out.coordinates = model.beams().dof;
+        return out;
+      }
+      case ModelKind::kRigid: {
+        RigidSystem system(*model.kernels(), model.bodies());
+        const int n = system.num_coordinates();
+        Eigen::VectorXd y0(2 * n);
+        y0 << q0, qd0;
+        return from_linearization(linearized_spectrum(system, 0.0, y0), n);
+      }
+      case ModelKind::kCoupled: {
+        const StateSpectrum full = linearized_spectrum(model.make_dynamics(adjusted), 0.0, q0, qd0);
+        return from_linearization(full, static_cast<int>(full.eigenvalues.size()) / 2);
+      }
+    }
+  } catch (const ContactError& e) {
+    throw InvalidInput(model.ir().source_path + ": at the initial state: " + e.what());
+  } catch (const SingularMassMatrixError& e) {
+    throw InvalidInput(model.ir().source_path + ": at the initial state: " + e.what());
+  }
+  throw InvalidInput("unknown kind of model");
+}
+
+std::vector<StepLimitRow> step_limit_table(const ModelSpectrum& original, const ModelSpectrum* adjusted) {
+  std::vector<StepLimitRow> rows;
+  for (const IntegratorSpec& integrator : advisor_integrators()) {
+    StepLimitRow row;
+    row.integrator = integrator;
+    row.original = stable_step(integrator, original.limiting.eigenvalues);
+    if (adjusted) row.adjusted = stable_step(integrator, adjusted->limiting.eigenvalues);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace mbfe::runtime
