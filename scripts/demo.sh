@@ -3,7 +3,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-scripts/build.sh
+# The main job needs the tool only: no tests, no benchmarks (about half the build).
+scripts/build.sh -DMBFE_BUILD_TESTS=OFF -DMBFE_BUILD_BENCHMARKS=OFF
 mkdir -p out
 echo
 echo "== The double pendulum: generated, compiled, simulated =="
