@@ -20,6 +20,7 @@
 #include <unordered_map>
 
 #include "frontend/sha256.h"
+#include "ir/beam_nodes.h"
 #include "frontend/text_guard.h"
 #include "frontend/yaml_reader.h"
 
@@ -28,11 +29,6 @@ namespace mbfe::frontend {
 // The front end fills the IR: its types are used unqualified here.
 using namespace mbfe::ir;
 namespace {
-
-// A support or point load is "at a node" when within this fraction of the
-// beam's length of it: far above rounding of a decimal position (1e-16),
-// far below any element length a model could use.
-constexpr double kNodeTolerance = 1e-9;
 
 // The name a parent takes for the ground frame; no body may take it.
 constexpr const char* kGround = "ground";
@@ -367,16 +363,15 @@ class ModelParser {
           view.prefixed(view.what(field) + " must be within [0, " + format_number(beam.length) +
                         "] (the beam's length; got " + shown(field.value.Scalar()) + ")"));
     }
-    const double spacing = beam.length / beam.elements;
-    const long node = std::lround(at / spacing);
-    if (std::fabs(at - node * spacing) > kNodeTolerance * beam.length) {
+    const ir::NodeOnBeam node = ir::node_on_beam(beam.length, beam.elements, at);
+    if (!node.on_node) {
       view.fail(field.value_loc,
                 view.prefixed(view.what(field) + " = " + shown(field.value.Scalar()) +
-                              " is not at a node (nodes are " + format_number(spacing) +
-                              " m apart; the nearest is node " + std::to_string(node) + " at " +
-                              format_number(node * spacing) + ")"));
+                              " is not at a node (nodes are " + format_number(node.spacing) +
+                              " m apart; the nearest is node " + std::to_string(node.nearest) + " at " +
+                              format_number(node.nearest * node.spacing) + ")"));
     }
-    return static_cast<int>(node);
+    return static_cast<int>(node.nearest);
   }
 
   std::vector<Support> parse_supports(const MapView& beam_view, const Field& field,

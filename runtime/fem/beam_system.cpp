@@ -7,16 +7,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ir/beam_nodes.h"
 #include "runtime/fem/beam_element.h"
 #include "runtime/fem/hermite_shape.h"
 
 namespace mbfe::runtime {
 
 namespace {
-
-// A support or load counts as "at a node" within this fraction of the beam
-// length: far above rounding of decimal positions, far below any element.
-constexpr double kNodeTolerance = 1e-9;
 
 std::string beam_error(const ir::Beam& beam, const std::string& message) {
   return "beam '" + beam.name + "': " + message;
@@ -26,23 +23,22 @@ std::string beam_error(const ir::Beam& beam, const std::string& message) {
 
 int node_at(const ir::Beam& beam, double s, const char* what) {
   const double L = beam.length;
-  const double slack = kNodeTolerance * L;
+  const double slack = ir::kNodeTolerance * L;
   if (!(s >= -slack && s <= L + slack)) {
     std::ostringstream os;
     os.precision(17);
     os << what << " at " << s << " m is outside the beam [0, " << L << "]";
     throw std::invalid_argument(beam_error(beam, os.str()));
   }
-  const double le = L / beam.elements;
-  const long node = std::lround(s / le);
-  if (std::abs(s - node * le) > slack) {
+  const ir::NodeOnBeam node = ir::node_on_beam(L, beam.elements, s);
+  if (!node.on_node) {
     std::ostringstream os;
     os.precision(17);
-    os << what << " at " << s << " m is not at a node (nodes every " << le
-       << " m; nearest " << node * le << " m)";
+    os << what << " at " << s << " m is not at a node (nodes every " << node.spacing << " m; nearest "
+       << node.nearest * node.spacing << " m)";
     throw std::invalid_argument(beam_error(beam, os.str()));
   }
-  return static_cast<int>(std::clamp<long>(node, 0, beam.elements));
+  return static_cast<int>(node.nearest);
 }
 
 BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity) {
