@@ -5,7 +5,6 @@
 #include "frontend/parse_model.h"
 #include "runtime/fem/beam_system.h"
 #include "runtime/multibody/contact_constraints.h"
-#include "runtime/multibody/coupled_system.h"
 #include "runtime/multibody/rigid_system.h"
 
 namespace mbfe {

@@ -17,7 +17,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "runtime/multibody/coupled_system.h"
+#include "runtime/multibody/coordinate_partitioning.h"
 #include "runtime/multibody/multibody_errors.h"
 
 namespace mbfe::runtime {

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "runtime/multibody/coordinate_partitioning.h"
+
 namespace mbfe::runtime {
 
 Eigen::MatrixXd rhs_jacobian(OdeSystem& system, double t, const Eigen::VectorXd& y,

@@ -24,7 +24,7 @@
 
 #include "runtime/integrators/ode_system.h"
 #include "runtime/modal/state_spectrum.h"
-#include "runtime/multibody/coupled_system.h"
+#include "runtime/multibody/coupled_dynamics.h"
 
 namespace mbfe::runtime {
 

@@ -14,7 +14,7 @@
 #include "ir/model.h"
 #include "runtime/abi/mbfe_model_abi.h"
 #include "runtime/damping/beam_model.h"
-#include "runtime/multibody/coupled_system.h"
+#include "runtime/multibody/coupled_dynamics.h"
 #include "runtime/multibody/rigid_system.h"
 
 namespace mbfe::runtime {

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "runtime/damping/beam_model.h"
-#include "runtime/multibody/coupled_system.h"
+#include "runtime/multibody/coupled_beam.h"
 
 namespace mbfe::runtime {
 

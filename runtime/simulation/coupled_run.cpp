@@ -5,6 +5,8 @@
 // multipliers (a cross-check; |Phi| drifts).
 #include <memory>
 
+#include "runtime/multibody/augmented_system.h"
+#include "runtime/multibody/coordinate_partitioning.h"
 #include "runtime/multibody/linearization.h"
 #include "runtime/multibody/multibody_errors.h"
 #include "runtime/simulation/invalid_input.h"

@@ -19,6 +19,8 @@
 #include "api/solver_cache.h"
 #include "runtime/simulation/coupled_beams.h"
 #include "runtime/integrators/integrator.h"
+#include "runtime/multibody/augmented_system.h"
+#include "runtime/multibody/coordinate_partitioning.h"
 #include "runtime/integrators/simulation_driver.h"
 #include "frontend/parse_model.h"
 #include "runtime/multibody/linearization.h"

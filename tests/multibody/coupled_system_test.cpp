@@ -5,7 +5,8 @@
 // - partitioned against augmented trajectories, |Phi| along the partitioned one;
 // - energy conservation with damping off (the contacts do no work);
 // - the named errors.
-#include "runtime/multibody/coupled_system.h"
+#include "runtime/multibody/augmented_system.h"
+#include "runtime/multibody/coordinate_partitioning.h"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "runtime/multibody/coupled_system.h"
+#include "runtime/multibody/augmented_system.h"
+#include "runtime/multibody/coordinate_partitioning.h"
 
 namespace mbfe::testing {
 

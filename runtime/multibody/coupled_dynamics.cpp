@@ -1,7 +1,6 @@
-#include "runtime/multibody/coupled_system.h"
+#include "runtime/multibody/coupled_dynamics.h"
 
-#include <Eigen/QR>
-#include <Eigen/SVD>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -17,133 +16,13 @@ namespace {
 // (double precision with a margin of ~1e3 ulps for the small dense solves).
 constexpr double kSingularRcond = 1e-13;
 
-[[noreturn]] void throw_singular_constraints(const ContactConstraints& cc,
-                                             const Eigen::MatrixXd& jb, double t, double rcond,
-                                             const std::string& what) {
-  // The constraint row that carries most of the lost rank.
-  int row = 0;
-  if (jb.rows() > 0) {
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(jb, Eigen::ComputeFullU);
-    svd.matrixU().col(jb.rows() - 1).cwiseAbs().maxCoeff(&row);
-  }
-  const int c = cc.num_rows() > 0 ? cc.contact_of_row(row) : 0;
-  const std::string name = cc.num_contacts() > 0 ? cc.contact_name(c) : "?";
-  std::ostringstream os;
-  os << "contact '" << name << "': singular constraint Jacobian at t = " << t << " s ("
-     << what << ", reciprocal condition " << rcond
-     << "): the rigid coordinates cannot move the contact point in the direction of row "
-     << row - (cc.num_rows() > 0 ? cc.first_row(c) : 0)
-     << " of this contact (a linkage at a dead point, or redundant contacts)";
-  throw SingularConstraintError(os.str(), name, t, rcond);
-}
-
-}  // namespace
-
-BeamForceFn sparse_beam_force(Eigen::SparseMatrix<double> C, Eigen::SparseMatrix<double> K) {
-  return [C = std::move(C), K = std::move(K)](const Eigen::Ref<const Eigen::VectorXd>& q,
-                                              const Eigen::Ref<const Eigen::VectorXd>& qd,
-                                              Eigen::Ref<Eigen::VectorXd> f) {
-    f.noalias() = C * qd;
-    f.noalias() += K * q;
-  };
-}
-
-BeamForceFn dense_beam_force(Eigen::MatrixXd C, Eigen::MatrixXd K) {
-  return [C = std::move(C), K = std::move(K)](const Eigen::Ref<const Eigen::VectorXd>& q,
-                                              const Eigen::Ref<const Eigen::VectorXd>& qd,
-                                              Eigen::Ref<Eigen::VectorXd> f) {
-    f.noalias() = C * qd;
-    f.noalias() += K * q;
-  };
-}
-
-BeamMesh beam_mesh(const BeamSystem& beam) {
-  BeamMesh mesh;
-  mesh.name = beam.name;
-  mesh.num_elements = beam.num_nodes - 1;
-  mesh.element_length = beam.element_length;
-  mesh.full_to_free = beam.full_to_free;
-  mesh.num_free = static_cast<int>(beam.M.rows());
-  return mesh;
-}
-
-CoupledBeam coupled_beam(const BeamSystem& beam) {
-  return coupled_beam(beam, sparse_beam_force(beam.C, beam.K));
-}
-
-CoupledBeam coupled_beam(const BeamSystem& beam, BeamForceFn force) {
-  CoupledBeam out;
-  out.mesh = beam_mesh(beam);
-  out.M = beam.M;
-  out.P = beam.P;
-  out.force = std::move(force);
-  return out;
-}
-
 std::vector<BeamMesh> meshes_of(const std::vector<CoupledBeam>& beams) {
   std::vector<BeamMesh> out;
   for (const CoupledBeam& b : beams) out.push_back(b.mesh);
   return out;
 }
 
-double constraint_scale(const ConstraintValues& cv) {
-  double scale = 0.0;
-  if (cv.jb.size() > 0) {
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(cv.jb);
-    scale = svd.singularValues()(0);
-  }
-  if (cv.je.size() > 0) scale = std::max(scale, cv.je.cwiseAbs().maxCoeff());
-  return std::max(scale, 1e-300);
-}
-
-bool clearly_regular(SmallLu& jv_lu, const ConstraintValues& cv) {
-  if (jv_lu.size() == 0) return true;  // no dependent coordinates: nothing to invert
-  // constraint_scale(cv) = max(sigma_max(J_b), max |J_e|) <= this, since
-  // sigma_max <= the Frobenius norm.
-  double scale_upper = cv.jb.size() > 0 ? cv.jb.norm() : 0.0;
-  if (cv.je.size() > 0) scale_upper = std::max(scale_upper, cv.je.cwiseAbs().maxCoeff());
-  const double needed = kSingularConstraint * std::max(scale_upper, 1e-300);
-  return jv_lu.sigma_min_lower_cheap() >= needed || jv_lu.sigma_min_lower() >= needed;
-}
-
-double sigma_min(const Eigen::MatrixXd& a) {
-  if (a.size() == 0) return 1.0;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(a);
-  return svd.singularValues()(svd.singularValues().size() - 1);
-}
-
-Partition choose_partition(const ContactConstraints& cc, const ConstraintValues& cv, double t,
-                           double* sigma_min_out) {
-  const Eigen::MatrixXd& jb = cv.jb;
-  const int m = static_cast<int>(jb.rows());
-  const int nb = static_cast<int>(jb.cols());
-  if (m > nb) {
-    std::ostringstream os;
-    os << "the contacts impose " << m << " constraint rows on " << nb
-       << " rigid coordinates; the dependent coordinates are taken among the rigid ones, "
-          "so at most "
-       << nb << " rows are possible";
-    throw SingularConstraintError(os.str(), cc.num_contacts() ? cc.contact_name(0) : "?", t,
-                                  0.0);
-  }
-  Partition p;
-  if (m == 0) {
-    for (int j = 0; j < nb; ++j) p.independent.push_back(j);
-    if (sigma_min_out) *sigma_min_out = 1.0;
-    return p;
-  }
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(jb);
-  std::vector<bool> dep(nb, false);
-  for (int i = 0; i < m; ++i) dep[qr.colsPermutation().indices()(i)] = true;
-  for (int j = 0; j < nb; ++j) (dep[j] ? p.dependent : p.independent).push_back(j);
-  Eigen::MatrixXd jv(m, m);
-  for (int i = 0; i < m; ++i) jv.col(i) = jb.col(p.dependent[i]);
-  const double smin = sigma_min(jv);
-  const double rel = smin / constraint_scale(cv);
-  if (!(rel >= kSingularConstraint)) throw_singular_constraints(cc, jb, t, rel, "J_b has rank < rows");
-  if (sigma_min_out) *sigma_min_out = smin;
-  return p;
-}
+}  // namespace
 
 CoupledDynamics::CoupledDynamics(const mbfe_model_v1& model, std::vector<CoupledBeam> beams,
                                  std::vector<BodyInertia> bodies)
@@ -390,59 +269,6 @@ std::vector<std::string> coupled_coordinate_names(const CoupledDynamics& dyn) {
     out.insert(out.end(), names.begin(), names.end());
   }
   return out;
-}
-
-// --- AugmentedSystem ----------------------------------------------------------
-
-AugmentedSystem::AugmentedSystem(std::shared_ptr<CoupledDynamics> dyn)
-    : CoupledSystem(std::move(dyn)) {
-  q_.resize(dyn_->n());
-  qd_.resize(dyn_->n());
-}
-
-void AugmentedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
-  const int n = dyn_->n();
-  if (y.size() != 2 * n) {
-    throw std::invalid_argument("AugmentedSystem: y has " + std::to_string(y.size()) +
-                                " entries, expected " + std::to_string(2 * n));
-  }
-  q_ = y.head(n);
-  qd_ = y.tail(n);
-  dyn_->evaluate(t, q_, qd_);
-  dyn_->solve_augmented(t, qdd_, lambda_);
-  ydot.resize(2 * n);
-  ydot.head(n) = qd_;
-  ydot.tail(n) = qdd_;
-}
-
-std::string AugmentedSystem::name(int i) const {
-  const std::vector<std::string> names = coupled_coordinate_names(*dyn_);
-  const int n = dyn_->n();
-  return i < n ? names[i] : names[i - n] + "_dot";
-}
-
-Eigen::VectorXd AugmentedSystem::initial_state(double, const Eigen::VectorXd& q,
-                                               const Eigen::VectorXd& qd) {
-  Eigen::VectorXd y(2 * dyn_->n());
-  y << q, qd;
-  return y;
-}
-
-void AugmentedSystem::full_state(double, const Eigen::VectorXd& y, Eigen::VectorXd& q,
-                                 Eigen::VectorXd& qd) {
-  q = y.head(dyn_->n());
-  qd = y.tail(dyn_->n());
-}
-
-ContactReport AugmentedSystem::report(double t, const Eigen::VectorXd& y) {
-  Eigen::VectorXd ydot;
-  rhs(t, y, ydot);
-  ContactReport r;
-  r.lambda = lambda_;
-  r.phi = dyn_->values().phi;
-  r.phi_max = dyn_->phi_max(dyn_->values());
-  r.s = dyn_->values().s;
-  return r;
 }
 
 }  // namespace mbfe::runtime

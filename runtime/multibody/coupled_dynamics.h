@@ -1,0 +1,101 @@
+// The coupled rigid + beam model of Section 4 (eqs (14)-(17)):
+//
+//   M_b(q_b) q_b'' + F_b + J_b^T lambda = Q_b                  (15a)
+//   M_c q_c'' + C_c q_c' + K_c q_c + J_c^T lambda = P_c        (15b)
+//   Phi(q_b, q_c) = 0                                          (15c)
+//
+// CoupledDynamics evaluates the terms at one state and solves for the
+// accelerations and multipliers, by the saddle-point system or by the
+// partitioned elimination; the two formulations that integrate it
+// (coordinate_partitioning.h, augmented_system.h) share it.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/abi/mbfe_model_abi.h"
+#include "runtime/multibody/contact_constraints.h"
+#include "runtime/multibody/coupled_beam.h"
+#include "runtime/multibody/partition_choice.h"
+#include "runtime/multibody/rigid_system.h"
+#include "runtime/multibody/small_lu.h"
+
+namespace mbfe::runtime {
+
+/// Contact forces and constraint residuals at one state.
+struct ContactReport {
+  Eigen::VectorXd lambda;   // multipliers of eq (15), stacked like the rows (N)
+  Eigen::VectorXd phi;      // constraint residuals (m)
+  double phi_max = 0.0;     // max |Phi| (m)
+  std::vector<double> s;    // per contact: position along its beam (m)
+};
+
+/// The shared core: rigid kernels, factored beam mass matrices and the two
+/// acceleration solvers. The model and this object's beams are constant; all
+/// scratch lives in members (one object per simulating thread).
+class CoupledDynamics {
+ public:
+  /// @throws std::invalid_argument for inconsistent beams / contacts,
+  ///         std::runtime_error if a beam mass matrix is not positive definite.
+  CoupledDynamics(const mbfe_model_v1& model, std::vector<CoupledBeam> beams,
+                  std::vector<BodyInertia> bodies = {});
+
+  int nb() const { return nb_; }
+  int nc() const { return nc_; }
+  int n() const { return nb_ + nc_; }
+  int m() const { return cc_.num_rows(); }
+  const ContactConstraints& constraints() const { return cc_; }
+  const mbfe_model_v1& model() const { return model_; }
+  const std::vector<CoupledBeam>& beams() const { return beams_; }
+
+  /// Evaluates M_b, Q_b - F_b, P_c - f_c, the constraints with gamma, and the
+  /// beam-side products a_c0 = M_c^-1 r_c, W = M_c^-1 J_c^T, H = J_c W.
+  /// q, qd: n entries ([q_b; q_c]). `at_q`, if given, holds the constraints
+  /// evaluated at this q already (without rates): only gamma is added.
+  void evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                const ConstraintValues* at_q = nullptr);
+  const ConstraintValues& values() const { return cv_; }
+
+  /// After evaluate(): q'' (n) and lambda (m) from the saddle-point system.
+  /// @throws SingularConstraintError / SingularMassMatrixError.
+  void solve_augmented(double t, Eigen::VectorXd& qdd, Eigen::VectorXd& lambda);
+  /// After evaluate(): the same unknowns by the partitioned elimination
+  /// (eqs (16)-(17)) with dependent coordinates p.dependent.
+  /// @throws SingularConstraintError if J_v or the reduced system is singular.
+  void solve_partitioned(double t, const Partition& p, Eigen::VectorXd& qdd,
+                         Eigen::VectorXd& lambda);
+
+  /// Constraint residual max |Phi| at q, and the row holding it.
+  double phi_max(const ConstraintValues& cv, int* row = nullptr) const;
+
+ private:
+  const mbfe_model_v1& model_;
+  std::vector<CoupledBeam> beams_;
+  std::vector<BodyInertia> bodies_;
+  ContactConstraints cc_;
+  int nb_, nc_;
+  std::vector<std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>> mc_factor_;
+  // Workspace.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> mb_row_;
+  Eigen::MatrixXd mb_;
+  Eigen::VectorXd fb_, qb_force_, rb_, rc_, ac0_, gc_, tmp_;
+  Eigen::MatrixXd w_, h_;
+  ConstraintValues cv_;
+  // Workspace of solve_partitioned (sized on first use, no allocation after).
+  Eigen::MatrixXd p_jv_, p_ju_, p_xju_, p_xh_, p_dir_, p_a_;
+  Eigen::VectorXd p_d_, p_rhs_, p_base_, p_b_, p_x_, p_mu_;
+  SmallLu p_jv_lu_, p_a_lu_;
+  // M_c^-1 e_k of the beam DOFs that contacts have touched, per beam
+  // (computed on first use: a slider visits a few elements, a pin one).
+  std::vector<std::vector<Eigen::VectorXd>> minv_col_;
+};
+
+/// Names of the full coordinates [q_b; q_c]: rigid coordinate names, then
+/// "<beam>_w<node>" / "<beam>_dw<node>" for the free beam DOFs.
+std::vector<std::string> coupled_coordinate_names(const CoupledDynamics& dyn);
+
+}  // namespace mbfe::runtime
