@@ -1,156 +1,19 @@
+// The generator's pipeline: derive the kernels of a model (symbolic/), remove
+// common subexpressions, print them (kernel_emitter.h) and lay out the two
+// files (solver_files.h).
 #include "generator/emit/generate_solver.h"
 
 #include <sstream>
 #include <stdexcept>
 
-#include "generator/emit/cpp_printer.h"
-#include "ir/model_error.h"
+#include "generator/emit/kernel_emitter.h"
+#include "generator/emit/solver_files.h"
 #include "generator/symbolic/contact_kinematics.h"
 #include "generator/symbolic/cse.h"
 #include "generator/symbolic/rigid_dynamics.h"
+#include "ir/model_error.h"
 
 namespace mbfe::gen {
-
-namespace {
-
-struct EmittedKernel {
-  std::string text;
-  long emitted = 0;   // operations written: straight-line code + one pass of a loop body
-  long executed = 0;  // operations per call: straight-line code + every pass
-};
-
-// An input parameter of the kernels: its C++ name and the symbols it carries.
-struct KernelParam {
-  std::string name;
-  std::vector<GiNaC::ex> symbols;
-};
-using KernelParams = std::vector<KernelParam>;
-
-bool declares(const std::string& signature, const std::string& param) {
-  for (const std::string& decl : {"const double* " + param + ",", "const double* " + param + ")",
-                                  "double " + param + ",", "double " + param + ")"})
-    if (signature.find(decl) != std::string::npos) return true;
-  return false;
-}
-
-constexpr const char* kParentTable = "kParent";
-
-std::string count_of(long n, const char* one, const char* many) {
-  return std::to_string(n) + " " + (n == 1 ? one : many);
-}
-
-// The assembly loop of the composite-rigid-body algorithm (see
-// AncestorPairAssembly): a loop rather than one statement per entry, so the
-// emitted code stays O(N) while M has N(N+1)/2 entries.
-std::string emit_assembly(const AncestorPairAssembly& a) {
-  std::ostringstream out;
-  const std::string n = "kNumCoordinates";
-  out << "  // Composite-rigid-body algorithm (CRBA), assembly: " << a.target << "_jk = " << a.target
-      << "_kj = S_j . U_k for every j on the\n"
-      << "  // path from k to the ground. A loop, not one statement per entry, keeps the code O(N); "
-      << count_of(a.pairs(), "pass", "passes") << ".\n";
-  if (a.has_unrelated_pairs())
-    out << "  for (int i = 0; i < " << n << " * " << n << "; ++i) " << a.target
-        << "[i] = 0.0;  // bodies on different branches\n";
-  // In an unbranched chain the parent of j is j - 1: a plain countdown, which
-  // the compiler unrolls, instead of a table lookup per step (measured 18 %
-  // faster for M of the 20-link chain).
-  out << "  for (int k = 0; k < " << n << "; ++k) {\n"
-      << "    const double* U = " << a.right << "[k];\n"
-      << "    for (int j = k; j >= 0; "
-      << (a.is_chain() ? std::string("--j) {  // an unbranched chain: the parent of j is j - 1")
-                       : "j = " + std::string(kParentTable) + "[j]) {")
-      << "\n"
-      << "      const double* S = " << a.left << "[j];\n"
-      << "      const double m_jk = ";
-  for (int c = 0; c < a.width; ++c) out << (c ? " + " : "") << "S[" << c << "]*U[" << c << "]";
-  out << ";\n"
-      << "      " << a.target << "[j*" << n << " + k] = m_jk;\n"
-      << "      " << a.target << "[k*" << n << " + j] = m_jk;\n"
-      << "    }\n  }\n";
-  return out.str();
-}
-
-// Prints one kernel as a C++ function; temporaries are renumbered t0, t1, ...
-// in the order they are defined.
-EmittedKernel emit_kernel(const Kernel& kernel, const SymbolNames& inputs, const KernelParams& params,
-                          const std::string& storage) {
-  SymbolNames names = inputs;
-  std::ostringstream body;
-  long ops = 0;
-  int next = 0;
-  CppPrinter printer(names);
-  for (const Assignment& s : kernel.statements) {
-    const std::string name = "t" + std::to_string(next++);
-    body << "  const double " << name << " = " << printer.print(s.rhs) << ";\n";
-    ops += CppPrinter::count_operations(s.rhs);
-    names.emplace(s.lhs, name);
-  }
-  for (const KernelOutput& o : kernel.outputs) {
-    body << "  " << o.target << " = " << printer.print(o.value) << ";\n";
-    ops += CppPrinter::count_operations(o.value);
-  }
-  EmittedKernel result;
-  result.emitted = result.executed = ops;
-  std::ostringstream text;
-  text << "// " << kernel.doc << " ";
-  if (kernel.assembly) {
-    const AncestorPairAssembly& a = *kernel.assembly;
-    result.emitted = ops + a.operations_per_pass();
-    result.executed = ops + a.operations_per_pass() * a.pairs();
-    text << result.emitted << " operations emitted (" << ops << " straight-line + " << a.operations_per_pass()
-         << " in the\n// assembly loop, which makes " << count_of(a.pairs(), "pass", "passes") << "): "
-         << result.executed << " per call.\n";
-  } else {
-    text << ops << " operations.\n";
-  }
-  text << storage << "void " << kernel.name << "(" << kernel.signature << ") {\n";
-  // Parameters a kernel never reads (no springs: no qd; no time-dependent loads: no t).
-  for (const KernelParam& param : params) {
-    if (!declares(kernel.signature, param.name)) continue;
-    bool used = false;
-    for (const auto& sym : param.symbols) {
-      for (const Assignment& s : kernel.statements) used = used || s.rhs.has(sym);
-      for (const KernelOutput& o : kernel.outputs) used = used || o.value.has(sym);
-    }
-    if (!used) text << "  (void)" << param.name << ";\n";
-  }
-  if (kernel.assembly) {
-    const AncestorPairAssembly& a = *kernel.assembly;
-    text << "  double " << a.left << "[kNumCoordinates][" << a.width << "];  // " << a.left_doc << "\n"
-         << "  double " << a.right << "[kNumCoordinates][" << a.width << "];  // " << a.right_doc << "\n";
-  }
-  text << body.str();
-  if (kernel.assembly) text << emit_assembly(*kernel.assembly);
-  text << "}\n";
-  result.text = text.str();
-  return result;
-}
-
-std::string banner(const ir::Model& model, const std::string& file, const GeneratedSolver& solver) {
-  std::ostringstream b;
-  b << "// " << file << ": generated by mbfe " << generator_version() << " from model '" << model.name
-    << "'.\n"
-    << "// Model file sha256: " << model.source_sha256 << "\n"
-    << "// Generated, do not edit. Regenerate with: mbfe generate <model file> -o <folder>\n";
-  if (!solver.operations.empty()) {
-    // Emitted, and executed per call where a loop makes the two differ.
-    auto count = [](long emitted, long executed) {
-      return std::to_string(emitted) + (executed != emitted ? " (" + std::to_string(executed) + " per call)" : "");
-    };
-    b << "// Operations per kernel (+ - * / and calls) as emitted, and executed per call where a loop differs:";
-    for (const KernelOperations& k : solver.operations) b << " " << k.kernel << " " << count(k.emitted, k.executed) << ";";
-    b << " total " << count(solver.total_emitted(), solver.total_executed()) << "; fused dynamics "
-      << count(solver.fused.emitted, solver.fused.executed) << ".\n";
-    if (solver.assembly_pairs > 0)
-      b << "// M is assembled by a loop with one pass per (ancestor, descendant) pair of bodies: "
-        << count_of(solver.assembly_pairs, "pass", "passes") << ", " << solver.assembly_operations_per_pass
-        << " operations each.\n";
-  }
-  return b.str();
-}
-
-}  // namespace
 
 long GeneratedSolver::total_emitted() const {
   long total = 0;
@@ -206,6 +69,7 @@ GeneratedSolver generate_solver_unchecked(const ir::Model& model) {
   }
 
   GeneratedSolver solver;
+  SolverParts parts;
   std::ostringstream kernels;
   for (Kernel* k : {&d.mass_matrix, &d.inertial_forces, &d.generalized_forces, &d.dynamics}) {
     eliminate_common_subexpressions(*k);
@@ -244,6 +108,8 @@ GeneratedSolver generate_solver_unchecked(const ir::Model& model) {
       solver.operations.push_back({k->name, e.emitted, e.executed});
       contact_text << "\n" << e.text;
     }
+    parts.contact_entries.push_back({c.name, c.type, c.beam, c.rows, c.at, c.position.name + "_value", c.phi.name,
+                                     c.jacobians.name, c.gamma.name});
     // The ABI wants the position as a return value.
     contact_text << "\nstatic double " << c.position.name << "_value(const double* q) {\n  double s = 0.0;\n  "
                  << c.position.name << "(q, &s);\n  return s;\n}\n";
@@ -253,72 +119,15 @@ GeneratedSolver generate_solver_unchecked(const ir::Model& model) {
   for (auto& pk : d.points) {
     eliminate_common_subexpressions(pk.kernel);
     points << "\n" << emit_kernel(pk.kernel, inputs, params, "static ").text;
+    parts.point_functions.push_back({pk.body, pk.point, pk.kernel.name});
   }
+  parts.kernels = kernels.str();
+  parts.points = points.str();
+  parts.contacts = contact_text.str();
+  if (d.mass_matrix.assembly && !d.mass_matrix.assembly->is_chain()) parts.parent_table = d.mass_matrix.assembly->parent;
 
-  const std::string& name = model.name;
-  const int n = static_cast<int>(model.bodies.size());
-  const std::string ns = "mbfe_generated::" + name;
-  const std::string entry = "mbfe_model_" + name;
-
-  std::ostringstream header;
-  header << banner(model, name + ".h", solver) << "#pragma once\n\n#include \"mbfe_model_abi.h\"\n\n"
-         << "namespace mbfe_generated {\nnamespace " << name << " {\n\n"
-         << "// Generalized coordinates, one per body, in model order:";
-  for (const auto& body : model.bodies) header << " " << body.name;
-  header << ".\nconstexpr int kNumCoordinates = " << n << ";\n\n"
-         << "void mass_matrix(const double* q, double* M);\n"
-         << "void inertial_forces(const double* q, const double* qd, double* F);\n"
-         << "void generalized_forces(const double* q, const double* qd, double t, double* Q);\n"
-         << "void point_position(const double* q, int body, int point, double* xy);\n"
-         << "void dynamics(const double* q, const double* qd, double t, double* M, double* F, double* Q);\n\n"
-         << "}  // namespace " << name << "\n}  // namespace mbfe_generated\n\n"
-         << "extern \"C\" const mbfe_model_v1* " << entry << "(void);\n";
-
-  std::ostringstream source;
-  source << banner(model, name + ".cpp", solver) << "#include \"" << name << ".h\"\n\n#include <cmath>\n\n"
-         << "namespace mbfe_generated {\nnamespace " << name << " {\n";
-  if (d.mass_matrix.assembly && !d.mass_matrix.assembly->is_chain()) {
-    source << "\n// Parent of each body (-1: the ground), for the assembly loop of M; a parent comes before its\n"
-           << "// children.\nconstexpr int " << kParentTable << "[kNumCoordinates] = {";
-    const std::vector<int>& parent = d.mass_matrix.assembly->parent;
-    for (std::size_t i = 0; i < parent.size(); ++i) source << (i ? ", " : "") << parent[i];
-    source << "};\n";
-  }
-  source << kernels.str() << points.str()
-         << contact_text.str()
-         << "\n// Ground-frame position of point `point` of body `body` (indices in model order).\n"
-         << "void point_position(const double* q, int body, int point, double* xy) {\n";
-  for (const auto& pk : d.points)
-    source << "  if (body == " << pk.body << " && point == " << pk.point << ") return " << pk.kernel.name
-           << "(q, xy);\n";
-  source << "  (void)q;\n  xy[0] = xy[1] = 0.0;  // unknown point: the caller validated indices\n}\n\n"
-         << "namespace {\n\nconst char* const kCoordinateNames[] = {";
-  for (int i = 0; i < n; ++i) source << (i ? ", " : "") << "\"" << model.bodies[i].name << "\"";
-  source << "};\n\n";
-  if (!contacts.empty()) {
-    source << "const mbfe_contact_kernels_v1 kContacts[] = {\n";
-    for (const ContactKernels& c : contacts)
-      source << "    {\"" << c.name << "\", " << c.type << ", " << c.beam << ", " << print_double(c.at) << ", "
-             << c.rows << ", " << c.position.name << "_value, " << c.phi.name << ", " << c.jacobians.name << ", "
-             << c.gamma.name << "},\n";
-    source << "};\n\n";
-  }
-  source << "const mbfe_model_v1 kModel = {\n"
-         << "    MBFE_MODEL_ABI_VERSION,\n"
-         << "    \"" << name << "\",\n"
-         << "    \"" << model.source_sha256 << "\",\n"
-         << "    \"" << generator_version() << "\",\n"
-         << "    kNumCoordinates,\n    kCoordinateNames,\n    mass_matrix,\n    inertial_forces,\n"
-         << "    generalized_forces,\n    point_position,\n    " << contacts.size() << ",\n    "
-         << (contacts.empty() ? "nullptr" : "kContacts") << ",\n    dynamics,\n};\n\n"
-         << "}  // namespace\n}  // namespace " << name << "\n}  // namespace mbfe_generated\n\n"
-         << "extern \"C\" const mbfe_model_v1* " << entry << "(void) { return &" << ns << "::kModel; }\n\n"
-         << "#ifdef MBFE_SHARED_ENTRY  // defined when compiled into a run-time loaded library\n"
-         << "extern \"C\" const mbfe_model_v1* mbfe_model_entry(void) { return " << entry << "(); }\n"
-         << "#endif\n";
-
-  solver.files.push_back({name + ".h", header.str()});
-  solver.files.push_back({name + ".cpp", source.str()});
+  solver.files.push_back({model.name + ".h", solver_header(model, solver)});
+  solver.files.push_back({model.name + ".cpp", solver_source(model, solver, parts)});
   return solver;
 }
 
