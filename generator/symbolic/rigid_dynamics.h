@@ -22,13 +22,9 @@
 
 #include "ir/model.h"
 #include "generator/symbolic/code_list.h"
+#include "generator/symbolic/planar_vectors.h"
 
 namespace mbfe::gen {
-
-/// A planar vector of expressions.
-struct Vec2x {
-  GiNaC::ex x, y;
-};
 
 /// Symbols and kernels of a model's rigid part.
 struct RigidDerivation {
