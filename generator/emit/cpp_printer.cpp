@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "ir/shortest_decimal.h"
+
 namespace mbfe::gen {
 
 using GiNaC::ex;
@@ -18,10 +20,7 @@ using GiNaC::numeric;
 std::string print_double(double value) {
   if (!std::isfinite(value)) throw std::overflow_error("a constant of the model overflows a double");
   char buffer[64];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
+  std::snprintf(buffer, sizeof buffer, "%.*g", ir::shortest_significant_digits(value), value);
   std::string text = buffer;
   // Whole numbers read best in fixed notation: "10.0", not "1e+01".
   if (value == std::floor(value) && std::fabs(value) < 1e15) {
@@ -207,26 +206,6 @@ long CppPrinter::count_operations(const ex& e) {
     return inner + 1;
   }
   return inner + 1;  // a function call
-}
-
-std::string structural_key(const ex& e) {
-  std::ostringstream out;
-  if (is_a<GiNaC::symbol>(e)) return GiNaC::ex_to<GiNaC::symbol>(e).get_name();
-  if (is_a<numeric>(e)) {
-    out << e;
-    return out.str();
-  }
-  std::vector<std::string> parts;
-  for (std::size_t i = 0; i < e.nops(); ++i) parts.push_back(structural_key(e.op(i)));
-  if (is_a<GiNaC::add>(e) || is_a<GiNaC::mul>(e)) std::sort(parts.begin(), parts.end());
-  std::string head = is_a<GiNaC::add>(e)     ? "+"
-                     : is_a<GiNaC::mul>(e)   ? "*"
-                     : is_a<GiNaC::power>(e) ? "^"
-                     : is_a<GiNaC::function>(e) ? GiNaC::ex_to<GiNaC::function>(e).get_name()
-                                                : "?";
-  std::string text = head + "(";
-  for (std::size_t i = 0; i < parts.size(); ++i) text += (i ? "," : "") + parts[i];
-  return text + ")";
 }
 
 }  // namespace mbfe::gen

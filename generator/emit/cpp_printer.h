@@ -40,8 +40,5 @@ class CppPrinter {
 /// (at most 17 significant digits), always with a '.' or an exponent.
 std::string print_double(double value);
 
-/// A structural sort key independent of memory addresses (GiNaC's own symbol
-/// names are used for symbols).
-std::string structural_key(const GiNaC::ex& e);
 
 }  // namespace mbfe::gen

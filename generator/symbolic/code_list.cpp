@@ -11,6 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ir/shortest_decimal.h"
+
 namespace mbfe::gen {
 
 long AncestorPairAssembly::pairs() const {
@@ -42,10 +44,7 @@ GiNaC::numeric exact(double value) {
   // dyadic 3152519739159347/2^52): the same double when printed, small
   // rationals in the algebra, and products rounded once, at the end.
   char text[64];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(text, sizeof text, "%.*e", digits - 1, value);
-    if (std::strtod(text, nullptr) == value) break;
-  }
+  std::snprintf(text, sizeof text, "%.*e", ir::shortest_significant_digits(value) - 1, value);
   // text = [-]d.ddde[+-]xx
   const std::string str = text;
   const std::size_t e = str.find('e');

@@ -1,16 +1,20 @@
 #include "generator/symbolic/cse.h"
 
 #include <algorithm>
+#include <sstream>
+#include <string>
+#include <vector>
 #include <unordered_map>
 #include <unordered_set>
 
-#include "generator/emit/cpp_printer.h"
 
 namespace mbfe::gen {
 
 namespace {
 
 using GiNaC::ex;
+using GiNaC::is_a;
+using GiNaC::numeric;
 using ExCount = std::unordered_map<ex, int, std::hash<ex>, GiNaC::ex_is_equal>;
 using ExMap = std::unordered_map<ex, ex, std::hash<ex>, GiNaC::ex_is_equal>;
 
@@ -18,6 +22,32 @@ bool is_compound(const ex& e) {
   return GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e) || GiNaC::is_a<GiNaC::power>(e) ||
          GiNaC::is_a<GiNaC::function>(e);
 }
+
+// The order CSE visits operands in, independent of memory addresses: a
+// structural key with GiNaC's own symbol names. It is not the sign-folding
+// key of CodeList::canonical (code_list.h): a canonical form must treat e and
+// -e alike, a visit order need not, and the temporaries' numbering of every
+// committed solver follows this one, so the two stay apart.
+std::string structural_key(const ex& e) {
+  std::ostringstream out;
+  if (is_a<GiNaC::symbol>(e)) return GiNaC::ex_to<GiNaC::symbol>(e).get_name();
+  if (is_a<numeric>(e)) {
+    out << e;
+    return out.str();
+  }
+  std::vector<std::string> parts;
+  for (std::size_t i = 0; i < e.nops(); ++i) parts.push_back(structural_key(e.op(i)));
+  if (is_a<GiNaC::add>(e) || is_a<GiNaC::mul>(e)) std::sort(parts.begin(), parts.end());
+  std::string head = is_a<GiNaC::add>(e)     ? "+"
+                     : is_a<GiNaC::mul>(e)   ? "*"
+                     : is_a<GiNaC::power>(e) ? "^"
+                     : is_a<GiNaC::function>(e) ? GiNaC::ex_to<GiNaC::function>(e).get_name()
+                                                : "?";
+  std::string text = head + "(";
+  for (std::size_t i = 0; i < parts.size(); ++i) text += (i ? "," : "") + parts[i];
+  return text + ")";
+}
+
 
 std::vector<ex> operands_in_structural_order(const ex& e) {
   std::vector<std::pair<std::string, ex>> keyed;
