@@ -77,13 +77,7 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
   }
   const double* qb = q.data();
   const double* qbd = qd.data();
-  if (model_.dynamics != nullptr) {
-    model_.dynamics(qb, qbd, t, mb_row_.data(), fb_.data(), qb_force_.data());
-  } else {
-    model_.mass_matrix(qb, mb_row_.data());
-    model_.inertial_forces(qb, qbd, fb_.data());
-    model_.generalized_forces(qb, qbd, t, qb_force_.data());
-  }
+  evaluate_dynamics(model_, qb, qbd, t, mb_row_.data(), fb_.data(), qb_force_.data());
   mb_ = mb_row_;
   rb_ = qb_force_ - fb_;
   if (at_q != nullptr) {

@@ -38,6 +38,17 @@ std::vector<BodyInertia> body_inertias(const ir::Model& model) {
   return out;
 }
 
+void evaluate_dynamics(const mbfe_model_v1& model, const double* q, const double* qd, double t,
+                       double* M_row_major, double* F, double* Q) {
+  if (model.dynamics != nullptr) {
+    model.dynamics(q, qd, t, M_row_major, F, Q);
+    return;
+  }
+  model.mass_matrix(q, M_row_major);
+  model.inertial_forces(q, qd, F);
+  model.generalized_forces(q, qd, t, Q);
+}
+
 void evaluate_rigid_terms(const mbfe_model_v1& model, const Eigen::VectorXd& q,
                           const Eigen::VectorXd& qd, double t, RigidTerms& out) {
   const int n = model.num_coordinates;
@@ -48,12 +59,10 @@ void evaluate_rigid_terms(const mbfe_model_v1& model, const Eigen::VectorXd& q,
     throw std::invalid_argument(os.str());
   }
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m_row(n, n);
-  model.mass_matrix(q.data(), m_row.data());
-  out.M = m_row;
   out.F.resize(n);
   out.Q.resize(n);
-  model.inertial_forces(q.data(), qd.data(), out.F.data());
-  model.generalized_forces(q.data(), qd.data(), t, out.Q.data());
+  evaluate_dynamics(model, q.data(), qd.data(), t, m_row.data(), out.F.data(), out.Q.data());
+  out.M = m_row;
 }
 
 void throw_singular_mass_matrix(const mbfe_model_v1& model,
@@ -131,13 +140,7 @@ void RigidSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot)
   }
   const double* q = y.data();
   const double* qd = y.data() + nq_;
-  if (model_.dynamics != nullptr) {
-    model_.dynamics(q, qd, t, m_row_.data(), f_.data(), q_force_.data());
-  } else {
-    model_.mass_matrix(q, m_row_.data());
-    model_.inertial_forces(q, qd, f_.data());
-    model_.generalized_forces(q, qd, t, q_force_.data());
-  }
+  evaluate_dynamics(model_, q, qd, t, m_row_.data(), f_.data(), q_force_.data());
   m_ = m_row_;
   llt_.compute(m_);
   if (llt_.info() != Eigen::Success || !(llt_.rcond() >= kMassRcondFloor)) {

@@ -37,6 +37,12 @@ struct RigidTerms {
   Eigen::VectorXd Q;  // nq, gravity, loads, springs (N or N m)
 };
 
+/// M (row-major nq x nq), F and Q of `model` at (q, qd, t), each nq entries
+/// (M nq^2): by the fused `dynamics` kernel when the solver has one (it shares
+/// the kinematics), else by the three kernels.
+void evaluate_dynamics(const mbfe_model_v1& model, const double* q, const double* qd, double t,
+                       double* M_row_major, double* F, double* Q);
+
 /// Evaluates the kernels of `model` at (q, qd, t) into `out` (resized if needed).
 /// @throws std::invalid_argument if q or qd does not have num_coordinates entries.
 void evaluate_rigid_terms(const mbfe_model_v1& model, const Eigen::VectorXd& q,
