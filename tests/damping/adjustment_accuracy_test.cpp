@@ -23,6 +23,7 @@
 #include "runtime/damping/beam_model.h"
 #include "runtime/damping/modal_adjustment.h"
 #include "runtime/fem/beam_system.h"
+#include "runtime/modal/step_response.h"
 #include "frontend/parse_model.h"
 
 namespace mbfe::runtime {
@@ -47,31 +48,7 @@ constexpr double kStaticSolveRel = 1e-7;
 constexpr double kPeakPrint = 0.005e-2;
 constexpr double kStaticPrint = 0.0005e-2;
 
-struct Exact {
-  std::vector<ModalDynamics> modes;
-  Eigen::VectorXd p, g;  // modal load, midspan modal weights
-  double eta(int j, double t) const {
-    const double k = modes[j].k, c = modes[j].c, st = p[j] / k;
-    const auto r = modal_roots(c, k);
-    if (r.first.imag() != 0.0) {
-      const double s = -r.first.real(), wd = r.first.imag();
-      return st * (1.0 - std::exp(-s * t) * (std::cos(wd * t) + s / wd * std::sin(wd * t)));
-    }
-    const double a = std::abs(r.first.real()), b = std::abs(r.second.real());
-    if (b - a <= 1e-7 * b) return st * (1.0 - (1.0 + a * t) * std::exp(-a * t));
-    return st * (1.0 - (b * std::exp(-a * t) - a * std::exp(-b * t)) / (b - a));
-  }
-  double w(double t) const {
-    double s = 0.0;
-    for (int j = 0; j < static_cast<int>(modes.size()); ++j) s += g[j] * eta(j, t);
-    return s;
-  }
-  double w_static() const {
-    double s = 0.0;
-    for (int j = 0; j < static_cast<int>(modes.size()); ++j) s += g[j] * p[j] / modes[j].k;
-    return s;
-  }
-};
+using Exact = ModalStepResponse;
 
 struct Models {
   Exact original, cap, cap_floor;
