@@ -5,6 +5,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <limits>
+#include <ostream>
 
 
 namespace mbfe::tool {
@@ -99,6 +100,90 @@ std::string spectrum_summary(const runtime::StateSpectrum& spectrum, int dof) {
     s += format(", forward-Euler h_max = %.6g s", h);
   }
   return s;
+}
+
+namespace {
+
+void print_adjusted_text(std::ostream& out, const ir::Beam& b, const runtime::BeamPart& r, bool all) {
+  if (!r.has_adjustment) return;
+  const int dof = static_cast<int>(r.system.M.rows());
+  out << "adjusted (policy " << policy_name(b.adjustment.policy) << ", omega_limit " << b.adjustment.omega_limit
+      << " rad/s, margin " << b.adjustment.margin << ", zeta_min " << b.adjustment.zeta_min << "): "
+      << r.adjusted.adjusted << " modes adjusted, " << r.adjusted.floored << " raised to zeta_min\n";
+  const auto left = spectrum_table_lines(r.original_spectrum, all);
+  const auto right = spectrum_table_lines(r.adjusted_spectrum, all);
+  const std::string blank(spectrum_table_width(), ' ');
+  const std::string gap = "  |";
+  std::string title_left = "original (Table 1, left half)";
+  title_left.resize(spectrum_table_width(), ' ');
+  out << title_left << gap << "adjusted (Table 1, right half)\n";
+  for (std::size_t i = 0; i < std::max(left.size(), right.size()); ++i)
+    out << (i < left.size() ? left[i] : blank) << gap << (i < right.size() ? right[i] : "") << "\n";
+  out << "summary (adjusted): " << spectrum_summary(r.adjusted_spectrum, dof) << "\n";
+  if (r.adjusted_spectrum.complete && r.original_spectrum.h_max_forward_euler > 0.0) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "forward-Euler h_max gain: %.0fx\n",
+                  r.adjusted_spectrum.h_max_forward_euler / r.original_spectrum.h_max_forward_euler);
+    out << buf;
+  }
+}
+
+}  // namespace
+
+const char* policy_name(ir::AdjustmentPolicy p) {
+  switch (p) {
+    case ir::AdjustmentPolicy::kNone:
+      return "none";
+    case ir::AdjustmentPolicy::kCap:
+      return "cap";
+    case ir::AdjustmentPolicy::kPaperEq25:
+      return "paper_eq25";
+    case ir::AdjustmentPolicy::kKeepSlow:
+      return "keep_slow";
+  }
+  return "?";
+}
+
+/// The JSON of one beam; an "adjusted" block goes next to "original".
+nlohmann::json beam_json(const runtime::BeamPart& r) {
+  nlohmann::json omega = nlohmann::json::array();
+  for (Eigen::Index j = 0; j < r.basis.omega.size(); ++j) omega.push_back(r.basis.omega[j]);
+  nlohmann::json beam;
+  beam["name"] = r.system.name;
+  beam["dof"] = r.system.M.rows();
+  beam["modal_path"] = r.dense ? "dense" : "sparse";
+  beam["natural_frequencies_rad_s"] = std::move(omega);
+  beam["original"] = spectrum_json(r.original_spectrum);
+  return beam;
+}
+
+void add_adjusted_json(nlohmann::json& beam, const ir::Beam& b, const runtime::BeamPart& a) {
+  if (!a.has_adjustment) return;
+  nlohmann::json block = spectrum_json(a.adjusted_spectrum);
+  block["policy"] = policy_name(b.adjustment.policy);
+  block["omega_limit"] = b.adjustment.omega_limit;
+  block["margin"] = b.adjustment.margin;
+  block["zeta_min"] = b.adjustment.zeta_min;
+  block["adjusted_modes"] = a.adjusted.adjusted;
+  block["floored_modes"] = a.adjusted.floored;
+  beam["adjusted"] = std::move(block);
+}
+
+void print_beam_text(std::ostream& out, const ir::Beam& b, const runtime::BeamPart& r, bool all) {
+  const int dof = static_cast<int>(r.system.M.rows());
+  out << "beam '" << r.system.name << "': " << dof << " DOF, Rayleigh alpha = " << r.system.rayleigh_alpha
+      << " 1/s, beta = " << r.system.rayleigh_beta << " s ("
+      << (r.dense ? "dense modal analysis, every mode"
+                  : "sparse Lanczos, lowest " + std::to_string(r.basis.omega.size()) + " modes")
+      << ")\n";
+  out << "state-space eigenvalues of eq (28), sorted by modulus (the paper's Table 1):\n";
+  if (r.has_adjustment) {
+    out << "summary (original): " << spectrum_summary(r.original_spectrum, dof) << "\n";
+    print_adjusted_text(out, b, r, all);
+    return;
+  }
+  for (const std::string& line : spectrum_table_lines(r.original_spectrum, all)) out << line << "\n";
+  out << "summary: " << spectrum_summary(r.original_spectrum, dof) << "\n";
 }
 
 }  // namespace mbfe::tool

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "ir/model.h"
+#include "runtime/damping/beam_model.h"
 #include "runtime/modal/state_spectrum.h"
 
 namespace mbfe::tool {
@@ -27,5 +29,19 @@ int spectrum_table_width();
 /// "100 DOF, 13 oscillatory pairs, fastest eigenvalue -1.314938e+08 1/s,
 /// forward-Euler h_max = 1.52098e-08 s".
 std::string spectrum_summary(const runtime::StateSpectrum& spectrum, int dof);
+
+/// "cap", "paper_eq25", "keep_slow", "none".
+const char* policy_name(ir::AdjustmentPolicy policy);
+
+/// One beam of `mbfe modal --json`: name, dof, modal_path, natural
+/// frequencies and the "original" spectrum block.
+nlohmann::json beam_json(const runtime::BeamPart& beam);
+
+/// The "adjusted" block next to "original" when the beam's adjustment is active.
+void add_adjusted_json(nlohmann::json& json, const ir::Beam& beam, const runtime::BeamPart& part);
+
+/// One beam as text: a heading, its Table 1 (both halves when adjusted) and
+/// the summary lines.
+void print_beam_text(std::ostream& out, const ir::Beam& beam, const runtime::BeamPart& part, bool all);
 
 }  // namespace mbfe::tool
