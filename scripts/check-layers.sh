@@ -25,7 +25,8 @@ allowed_for() {
     api) echo "ir frontend generator runtime api" ;;
     tool) echo "ir frontend generator runtime api tool" ;;
     python) echo "ir frontend generator runtime api python" ;;
-    examples | bench) echo "ir frontend generator runtime api tests" ;;
+    examples) echo "ir frontend generator runtime api examples" ;;
+    bench) echo "ir frontend generator runtime api tests bench" ;;
     tests) echo "ir frontend generator runtime api tests" ;;
   esac
 }
