@@ -11,7 +11,7 @@
 // once they are an hour old.
 //
 // Test hook: $MBFE_JIT_COMPILER_OVERRIDE, when set, replaces the compiler
-// command (it is then part of the cache key). tests/robustness/ points it at a
+// command (it is then part of the cache key). tests/api/solver_cache_test.cpp points it at a
 // script that fails, to check that a failed compile leaves nothing behind and
 // shows the compiler's message. Not meant for users.
 #pragma once

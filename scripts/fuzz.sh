@@ -64,7 +64,7 @@ seeds=(tests/fuzz/corpus tests/fuzz/regressions)
 echo "fuzz: running model_fuzz for ${seconds} s"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/tests/robustness/lsan.supp:print_suppressions=0}"
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/tests/support/lsan.supp:print_suppressions=0}"
 set +e
 "$build_dir/model_fuzz" "$build_dir/corpus" "${seeds[@]}" \
   -dict=tests/fuzz/model.dict -max_len=4096 -rss_limit_mb=2048 -timeout=10 \

@@ -29,7 +29,7 @@ cmake -S . -B "$build_dir" \
 # `mbfe generate` for the solvers of the test suite (mbfe_add_model).
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-export LSAN_OPTIONS="suppressions=$PWD/tests/robustness/lsan.supp:print_suppressions=0"
+export LSAN_OPTIONS="suppressions=$PWD/tests/support/lsan.supp:print_suppressions=0"
 cmake --build "$build_dir" -j"$jobs" --target mbfe_cli mbfe_tests
 export MBFE_CACHE_DIR="$PWD/$build_dir/test-cache"
 # gtest_discover_tests sets MBFE_CACHE_DIR per test as well; the filter (if any)

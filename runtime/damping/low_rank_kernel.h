@@ -9,7 +9,7 @@
 // compiled for that instruction set alone (a `target` attribute, not a
 // build-wide -march that would mix Eigen's alignment rules between files) and
 // chosen at run time when the processor has it. Both are tested against a
-// dense product (tests/damping/low_rank_kernel_test.cpp); they differ by
+// dense product (tests/runtime/damping/low_rank_kernel_test.cpp); they differ by
 // summation order only.
 #pragma once
 

@@ -131,7 +131,7 @@ TEST(ApiModel, SimulationRowsEqualTheCommandLine) {
   EXPECT_EQ(rows.units, (std::vector<std::string>{"s", "rad", "rad", "rad/s", "rad/s"}));
   const std::string csv = ::testing::TempDir() + "/api_vs_cli.csv";
   const test::CliRun cli = test::run_cli("simulate " + path + " --integrator rk4 --step 1e-3 --t-end 0.5 --quiet --out " + csv);
-  ASSERT_EQ(cli.status, 0) << cli.error;
+  ASSERT_EQ(cli.status, 0) << cli.err;
   const test::Csv table = test::read_csv(csv);
   ASSERT_EQ(table.rows.size(), rows.values.size());
   for (std::size_t r = 0; r < rows.values.size(); ++r) EXPECT_EQ(table.rows[r], rows.values[r]) << "row " << r;

@@ -9,8 +9,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "generator/emit/generate_solver.h"
 #include "frontend/parse_model.h"
+#include "generator/emit/generate_solver.h"
+#include "tests/support/cli.h"
 
 namespace mbfe {
 namespace {
@@ -47,8 +48,8 @@ TEST(GeneratedSources, ByteIdenticalAcrossProcesses) {
   const fs::path base = fs::temp_directory_path() / ("mbfe-determinism-" + std::to_string(::getpid()));
   const std::string model = std::string(MBFE_SOURCE_DIR) + "/models/chain_10.yaml";
   for (const char* run : {"a", "b"}) {
-    const std::string cmd = std::string(MBFE_CLI) + " generate " + model + " -o " + (base / run).string() + " --quiet";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    const test::CliRun r = test::run_cli("generate " + model + " -o " + test::shell_quote((base / run).string()) + " --quiet");
+    ASSERT_EQ(r.status, 0) << r.err;
   }
   for (const char* name : {"chain_10.h", "chain_10.cpp"})
     EXPECT_EQ(slurp(base / "a" / name), slurp(base / "b" / name)) << name;

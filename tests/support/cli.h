@@ -32,9 +32,11 @@ inline std::string read_text(const std::string& path) {
 }
 
 struct CliRun {
-  int status = -1;     // exit status; 128 + signal number if killed by a signal
-  std::string output;  // stdout
-  std::string error;   // stderr
+  int status = -1;  // exit status; 128 + signal number if killed by a signal
+  std::string out;  // stdout
+  std::string err;  // stderr
+  /// stdout then stderr, for checks that do not care which stream says it.
+  std::string all() const { return out + err; }
 };
 
 /// Runs `env_prefix mbfe args` through the shell from the source folder.
@@ -51,8 +53,8 @@ inline CliRun run_cli(const std::string& args, const std::string& env_prefix = "
   const int raw = std::system(command.c_str());
   CliRun run;
   run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : WIFSIGNALED(raw) ? 128 + WTERMSIG(raw) : -1;
-  run.output = read_text(out_path);
-  run.error = read_text(err_path);
+  run.out = read_text(out_path);
+  run.err = read_text(err_path);
   std::remove(out_path);
   std::remove(err_path);
   return run;

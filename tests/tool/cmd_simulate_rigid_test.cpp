@@ -9,6 +9,7 @@
 #include <string>
 
 #include "runtime/abi/mbfe_model_abi.h"
+#include "tests/support/cli.h"
 
 extern "C" const mbfe_model_v1* mbfe_model_double_pendulum(void);
 
@@ -16,21 +17,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int status;
-  std::string out;
-};
+// Runs the mbfe binary with `args`: stdout, and stderr after it when `merge`.
+using mbfe::test::CliRun;
 
-// Runs the mbfe binary with `args` (stderr discarded unless `merge`).
 CliRun mbfe(const std::string& args, bool merge = false) {
-  const std::string cmd = std::string(MBFE_CLI) + " " + args + (merge ? " 2>&1" : " 2>/dev/null");
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-  const int status = ::pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  CliRun r = mbfe::test::run_cli(args);
+  if (merge) r.out += r.err;
+  return r;
 }
 
 std::string model(const char* name) { return std::string(MBFE_SOURCE_DIR) + "/models/" + name; }

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "tests/coupled/cli_run.h"
+#include "tests/support/cli.h"
 
 namespace mbfe::coupled_test {
 namespace {
@@ -34,10 +34,9 @@ std::string list(const std::vector<double>& v) {
 
 nlohmann::json eval(const std::string& model, const std::vector<double>& q, const std::vector<double>& qd,
                     const std::vector<double>& qc, const std::vector<double>& qcd) {
-  const CliRun r = run_cli("eval " + model + " --json --q " + list(q) + " --qd " + list(qd) + " --qc " + list(qc) +
-                               " --qcd " + list(qcd),
-                           /*stderr_to_null=*/true);
-  EXPECT_EQ(r.status, 0) << r.out;
+  const test::CliRun r = test::run_cli("eval " + model + " --json --q " + list(q) + " --qd " + list(qd) + " --qc " + list(qc) +
+                               " --qcd " + list(qcd));
+  EXPECT_EQ(r.status, 0) << r.all();
   return nlohmann::json::parse(r.out).at("constraints");
 }
 
@@ -133,16 +132,16 @@ TEST(CoupledEval, PaperPlatformConstraintsMatchFiniteDifferences) {
 }
 
 TEST(CoupledEval, WrongBeamCoordinateCountIsAUsageError) {
-  const CliRun r = run_cli("eval models/double_pendulum_beam.yaml --json --q 0,0 --qc 1,2,3");
-  EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_NE(r.out.find("expected 100 (beam coordinates in contract order)"), std::string::npos) << r.out;
+  const test::CliRun r = test::run_cli("eval models/double_pendulum_beam.yaml --json --q 0,0 --qc 1,2,3");
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.all().find("expected 100 (beam coordinates in contract order)"), std::string::npos) << r.all();
 }
 
 TEST(CoupledEval, DefaultsToZeroBeamCoordinates) {
   // At the shipped initial state with the beam undeformed the slider is closed.
-  const CliRun r = run_cli(
-      "eval models/double_pendulum_beam.yaml --json --q -1.3874443249943893,-0.9342922220176699", true);
-  ASSERT_EQ(r.status, 0) << r.out;
+  const test::CliRun r = test::run_cli(
+      "eval models/double_pendulum_beam.yaml --json --q -1.3874443249943893,-0.9342922220176699");
+  ASSERT_EQ(r.status, 0) << r.all();
   const nlohmann::json c = nlohmann::json::parse(r.out).at("constraints");
   ASSERT_EQ(c.at("Phi").size(), 1u);
   // The initial angles are printed to 17 digits: Phi ~ |J| * 1e-16.

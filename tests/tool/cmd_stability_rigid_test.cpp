@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "tests/robustness/cli_process.h"
+#include "tests/support/process.h"
 #include "runtime/integrators/integrator.h"
 #include "runtime/stability/step_limits.h"
 
@@ -84,7 +84,7 @@ TEST(CmdStabilityRigid, DoublePendulumAndTextReport) {
   ASSERT_EQ(text.status, 0) << text.err;
   EXPECT_NE(text.out.find("linearised at the initial state"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("local estimate"), std::string::npos) << text.out;
-  const RunResult js = run_mbfe(dir, "stability models/double_pendulum.yaml --json", "", "json");
+  const RunResult js = run_mbfe(dir, "stability models/double_pendulum.yaml --json");
   ASSERT_EQ(js.status, 0) << js.err;
   const auto j = nlohmann::json::parse(js.out);
   const double rk4 = finite(j.at("original"), "rk4");

@@ -14,7 +14,7 @@
 #include <sstream>
 #include <string>
 
-#include "tests/coupled/cli_run.h"
+#include "tests/support/cli.h"
 #include "api/mbfe.h"
 #include "api/solver_cache.h"
 #include "runtime/simulation/coupled_beams.h"
@@ -159,13 +159,13 @@ TEST(CoupledSimulation, PaperPlatformAdjustedStableAtLimitAndOriginalDivergesAt1
               h_adj.critical.real(), h_adj.critical.imag(), h_adj.h / h_orig.h);
 
   // `mbfe stability --json` predicts the same limits (the same linearisation).
-  const CliRun st = run_cli("stability models/paper_platform.yaml --json", true);
-  ASSERT_EQ(st.status, 0) << st.out;
+  const test::CliRun st = test::run_cli("stability models/paper_platform.yaml --json");
+  ASSERT_EQ(st.status, 0) << st.all();
   const nlohmann::json limits = nlohmann::json::parse(st.out);
   EXPECT_DOUBLE_EQ(limits.at("adjusted").at("forward_euler").get<double>(), h_adj.h);
   EXPECT_DOUBLE_EQ(limits.at("original").at("forward_euler").get<double>(), h_orig.h);
-  const CliRun md = run_cli("modal models/paper_platform.yaml --json", true);
-  ASSERT_EQ(md.status, 0) << md.out;
+  const test::CliRun md = test::run_cli("modal models/paper_platform.yaml --json");
+  ASSERT_EQ(md.status, 0) << md.all();
   EXPECT_EQ(nlohmann::json::parse(md.out).at("coupled").at("states").get<int>(), 402);
 
   CoupledModel adjusted = load_coupled(model, true);
@@ -187,26 +187,26 @@ TEST(CoupledSimulation, PaperPlatformAdjustedStableAtLimitAndOriginalDivergesAt1
 
 TEST(CoupledSimulation, CliWritesContactColumnsAndExitsThreeOnDivergence) {
   const std::string csv = std::string(MBFE_BINARY_DIR) + "/coupled_cli_test.csv";
-  CliRun r = run_cli("simulate models/paper_platform.yaml --integrator forward_euler --step 1.4e-5 --t-end 0.01 --quiet "
+  test::CliRun r = test::run_cli("simulate models/paper_platform.yaml --integrator forward_euler --step 1.4e-5 --t-end 0.01 --quiet "
                      "--probe beam1@0.5,beam2@0.5 --out '" + csv + "'");
-  ASSERT_EQ(r.status, 0) << r.out;
-  Csv c = read_csv(csv);
+  ASSERT_EQ(r.status, 0) << r.all();
+  test::Csv c = test::read_csv(csv);
   ASSERT_FALSE(c.rows.empty());
   for (const char* col : {"t", "carrier_x", "arm", "beam1@0.5", "beam2@0.5", "carrier_x_dot", "beam2@0.5_dot",
                           "lambda_arm_pin_1", "lambda_arm_pin_2", "lambda_cp2_slider", "phi_abs"})
-    EXPECT_GE(c.col(col), 0) << col;
-  for (const auto& row : c.rows) EXPECT_LT(row[c.col("phi_abs")], kClosureTol);
+    EXPECT_GE(c.column(col), 0) << col;
+  for (const auto& row : c.rows) EXPECT_LT(row[c.column("phi_abs")], kClosureTol);
   // Diverging: exit 3, the message names t, the step, the integrator and the limit; rows kept.
-  r = run_cli("simulate models/paper_platform.yaml --integrator forward_euler --step 1.6e-5 --t-end 0.05 --quiet "
+  r = test::run_cli("simulate models/paper_platform.yaml --integrator forward_euler --step 1.6e-5 --t-end 0.05 --quiet "
               "--out '" + csv + "'");
-  EXPECT_EQ(r.status, 3) << r.out;
-  EXPECT_NE(r.out.find("diverged at t = "), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("forward_euler's stable limit"), std::string::npos) << r.out;
-  c = read_csv(csv);
+  EXPECT_EQ(r.status, 3) << r.all();
+  EXPECT_NE(r.all().find("diverged at t = "), std::string::npos) << r.all();
+  EXPECT_NE(r.all().find("forward_euler's stable limit"), std::string::npos) << r.all();
+  c = test::read_csv(csv);
   EXPECT_GT(c.rows.size(), 1u);
   // Formulation flag.
-  EXPECT_EQ(run_cli("simulate models/paper_platform.yaml --formulation lagrange --quiet").status, 2);
-  EXPECT_EQ(run_cli("simulate models/double_pendulum.yaml --formulation augmented --quiet").status, 2);
+  EXPECT_EQ(test::run_cli("simulate models/paper_platform.yaml --formulation lagrange --quiet").status, 2);
+  EXPECT_EQ(test::run_cli("simulate models/double_pendulum.yaml --formulation augmented --quiet").status, 2);
 }
 
 }  // namespace
@@ -274,12 +274,12 @@ TEST(CoupledSimulation, SliderOffTheBeamNamesContactTimeAndValue) {
   const std::string path = dir + "/coupled_slider_off_test.yaml";
   std::ofstream(path) << yaml;
   const std::string csv = dir + "/coupled_slider_off_test.csv";
-  const CliRun r = run_cli("simulate '" + path + "' --integrator rk4 --step 1e-5 --t-end 0.5 --quiet --out '" + csv + "'");
-  EXPECT_EQ(r.status, 3) << r.out;
-  EXPECT_NE(r.out.find("failed at t = "), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("contact 'tip_slider': the slider left beam 'beam1' at t = "), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("s = -"), std::string::npos) << r.out;
-  const Csv c = read_csv(csv);
+  const test::CliRun r = test::run_cli("simulate '" + path + "' --integrator rk4 --step 1e-5 --t-end 0.5 --quiet --out '" + csv + "'");
+  EXPECT_EQ(r.status, 3) << r.all();
+  EXPECT_NE(r.all().find("failed at t = "), std::string::npos) << r.all();
+  EXPECT_NE(r.all().find("contact 'tip_slider': the slider left beam 'beam1' at t = "), std::string::npos) << r.all();
+  EXPECT_NE(r.all().find("s = -"), std::string::npos) << r.all();
+  const test::Csv c = test::read_csv(csv);
   ASSERT_GT(c.rows.size(), 100u);
   EXPECT_GT(c.rows.back()[0], 0.1);  // the run got well under way before the tip left
 }

@@ -9,7 +9,7 @@
 
 #include "runtime/integrators/integrator.h"
 #include "runtime/integrators/simulation_driver.h"
-#include "tests/integrators/test_systems.h"
+#include "tests/runtime/integrators/test_systems.h"
 
 namespace mbfe::runtime {
 namespace {

@@ -5,7 +5,7 @@
 #include <Eigen/SparseCholesky>
 #include <stdexcept>
 
-#include "tests/fem/beam_fixtures.h"
+#include "tests/runtime/fem/beam_fixtures.h"
 #include "runtime/fem/beam_system.h"
 
 namespace mbfe::runtime {

@@ -10,32 +10,13 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tests/support/cli.h"
+
+namespace mbfe {
 namespace {
 
-struct CliRun {
-  int status = -1;
-  std::string out;  // stdout
-  std::string err;  // stderr
-};
-
-CliRun run_cli(const std::string& args, const std::string& env = "") {
-  // Per process: ctest -j runs the tests of this file at the same time.
-  const std::string err_file =
-      std::string(MBFE_BINARY_DIR) + "/cli_test_stderr_" + std::to_string(::getpid()) + ".txt";
-  const std::string cmd = std::string("cd '") + MBFE_SOURCE_DIR + "' && " + env + " '" + MBFE_CLI + "' " + args +
-                          " 2>'" + err_file + "'";
-  CliRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int st = pclose(pipe);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  std::ifstream e(err_file);
-  r.err.assign(std::istreambuf_iterator<char>(e), std::istreambuf_iterator<char>());
-  return r;
-}
+using test::CliRun;
+using test::run_cli;
 
 std::string tmp(const std::string& name) {
   return std::string(MBFE_BINARY_DIR) + "/cli_test_" + std::to_string(::getpid()) + "_" + name;
@@ -64,7 +45,7 @@ TEST(CmdStability, TextAndHelp) {
   ASSERT_EQ(r.status, 0);
   EXPECT_NE(r.out.find("forward_euler       1.521e-08 s       1.4597e-05 s      (960x)"), std::string::npos) << r.out;
   EXPECT_EQ(run_cli("stability --help").status, 0);
-  EXPECT_EQ(run_cli("stability models/double_pendulum.yaml").status, 0);  // rigid: tests/stability/rigid_cli_test.cpp
+  EXPECT_EQ(run_cli("stability models/double_pendulum.yaml").status, 0);  // rigid: tests/tool/cmd_stability_rigid_test.cpp
   EXPECT_EQ(run_cli("stability").status, 2);
 }
 
@@ -160,3 +141,4 @@ TEST(CmdModal, AdjustedBlock) {
 }
 
 }  // namespace
+}  // namespace mbfe

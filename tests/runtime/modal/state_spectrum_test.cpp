@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "tests/fem/beam_fixtures.h"
+#include "tests/runtime/fem/beam_fixtures.h"
 #include "runtime/fem/beam_system.h"
 #include "runtime/modal/modal_analysis.h"
 #include "runtime/modal/state_spectrum.h"

@@ -8,24 +8,17 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "tests/support/cli.h"
+
+namespace mbfe {
 namespace {
 
-struct CliRun {
-  int status = -1;
-  std::string out;
-};
+using test::CliRun;
 
+// `mbfe ARGS`, stderr after stdout.
 CliRun run_cli(const std::string& args) {
-  const std::string cmd = std::string("cd '") + MBFE_SOURCE_DIR + "' && '" + MBFE_CLI + "' " + args +
-                          " 2>&1";
-  CliRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int st = pclose(pipe);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  CliRun r = test::run_cli(args);
+  r.out += r.err;
   return r;
 }
 
@@ -89,3 +82,4 @@ TEST(CmdModal, EveryShippedBeamModelRuns) {
 }
 
 }  // namespace
+}  // namespace mbfe

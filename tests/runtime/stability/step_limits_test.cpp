@@ -7,7 +7,7 @@
 #include <random>
 
 #include "runtime/integrators/integrator.h"
-#include "tests/integrators/test_systems.h"
+#include "tests/runtime/integrators/test_systems.h"
 #include "runtime/multibody/linearization.h"
 #include "runtime/stability/step_limits.h"
 

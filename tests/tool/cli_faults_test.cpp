@@ -7,7 +7,7 @@
 #include <regex>
 #include <string>
 
-#include "tests/robustness/cli_process.h"
+#include "tests/support/process.h"
 
 namespace mbfe::test {
 namespace {
@@ -22,7 +22,7 @@ long rows_in_message(const std::string& err) {
 class CliFaults : public ::testing::Test {
  protected:
   std::string env() const { return "MBFE_CACHE_DIR=" + quote((tmp_ / "cache").string()); }
-  RunResult mbfe(const std::string& args, const std::string& tag = "run") { return run_mbfe(tmp_, args, env(), tag); }
+  RunResult mbfe(const std::string& args) { return run_mbfe(tmp_, args, env()); }
   TempDir tmp_;
 };
 
@@ -124,9 +124,8 @@ TEST_F(CliFaults, BadFlagsExit2) {
       {"eval models/double_pendulum.yaml --q 1,2,3", "--q"},
       {"frobnicate models/double_pendulum.yaml", "unknown command 'frobnicate'"},
   };
-  int i = 0;
   for (const Case& c : cases) {
-    const RunResult r = mbfe(c.args, "flags" + std::to_string(i++));
+    const RunResult r = mbfe(c.args);
     EXPECT_EQ(r.status, 2) << c.args << "\n" << r.err;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
     EXPECT_EQ(r.err.find("error: "), std::string::npos) << "an internal error, not a usage error: " << r.err;
@@ -137,7 +136,7 @@ TEST_F(CliFaults, MissingModelFileExits2NamingTheFile) {
   const std::string missing = (tmp_ / "no_such_model.yaml").string();
   for (const char* command : {"simulate", "eval", "generate", "modal"}) {
     const std::string extra = std::string(command) == "generate" ? " -o " + quote((tmp_ / "gen").string()) : "";
-    const RunResult r = mbfe(std::string(command) + " " + quote(missing) + extra, command);
+    const RunResult r = mbfe(std::string(command) + " " + quote(missing) + extra);
     EXPECT_EQ(r.status, 2) << command << ": " << r.err;
     EXPECT_EQ(r.err.rfind(missing + ":", 0), 0u) << command << ": " << r.err;
   }

@@ -17,7 +17,7 @@
 
 #include "runtime/multibody/multibody_errors.h"
 #include "tests/reference/double_pendulum_beam.h"
-#include "tests/multibody/test_beam.h"
+#include "tests/runtime/multibody/test_beam.h"
 
 namespace mbfe::runtime {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "tests/robustness/cli_process.h"
+#include "tests/support/process.h"
 
 namespace mbfe::test {
 namespace {
@@ -43,8 +43,8 @@ class SolverCache : public ::testing::Test {
     spit(path, chain_model(name, mass));
     return path;
   }
-  RunResult eval(const fs::path& model, const std::string& tag = "eval", const std::string& extra_env = "") {
-    return run_mbfe(tmp_, "eval " + quote(model.string()) + kEvalArgs, env() + " " + extra_env, tag);
+  RunResult eval(const fs::path& model, const std::string& extra_env = "") {
+    return run_mbfe(tmp_, "eval " + quote(model.string()) + kEvalArgs, env() + " " + extra_env);
   }
   // Entries of the cache (folders not starting with '.'), and leftovers
   // (build folders, discarded entries).
@@ -69,12 +69,12 @@ class SolverCache : public ::testing::Test {
   // After damaging the one entry: the next run says so, rebuilds it and gives
   // the same numbers; the run after that reuses the rebuilt entry.
   void expect_rebuilt(const fs::path& model, const RunResult& first) {
-    const RunResult rebuilt = eval(model, "rebuilt");
+    const RunResult rebuilt = eval(model);
     EXPECT_EQ(rebuilt.status, 0) << rebuilt.err;
     EXPECT_NE(rebuilt.err.find("is damaged"), std::string::npos) << rebuilt.err;
     EXPECT_NE(rebuilt.err.find("compiled the solver"), std::string::npos) << rebuilt.err;
     EXPECT_EQ(rebuilt.out, first.out);
-    const RunResult reused = eval(model, "reused");
+    const RunResult reused = eval(model);
     EXPECT_EQ(reused.status, 0) << reused.err;
     EXPECT_NE(reused.err.find("using cached solver"), std::string::npos) << reused.err;
     EXPECT_EQ(reused.out, first.out);
@@ -120,14 +120,14 @@ TEST_F(SolverCache, TwoProcessesCompilingTheSameNewModelBothSucceedAndAgree) {
   // start within milliseconds; a compile takes a second or more).
   EXPECT_GE(both_compiled, 1);
   // And the entry they left is sound: a third process reuses it.
-  const RunResult again = eval(tmp_ / "race0.yaml", "again");
+  const RunResult again = eval(tmp_ / "race0.yaml");
   EXPECT_EQ(again.status, 0) << again.err;
   EXPECT_NE(again.err.find("using cached solver"), std::string::npos) << again.err;
 }
 
 TEST_F(SolverCache, TruncatedLibraryIsDetectedAndRebuilt) {
   const fs::path model = write_model("m.yaml", "truncated", 1.0);
-  const RunResult first = eval(model, "first");
+  const RunResult first = eval(model);
   ASSERT_EQ(first.status, 0) << first.err;
   ASSERT_EQ(entries().size(), 1u);
   const fs::path library = entries()[0] / "solver.so";
@@ -141,7 +141,7 @@ TEST_F(SolverCache, TruncatedLibraryIsDetectedAndRebuilt) {
 
 TEST_F(SolverCache, FlippedBytesAreDetectedAndRebuilt) {
   const fs::path model = write_model("m.yaml", "flipped", 1.0);
-  const RunResult first = eval(model, "first");
+  const RunResult first = eval(model);
   ASSERT_EQ(first.status, 0) << first.err;
   ASSERT_EQ(entries().size(), 1u);
   const fs::path library = entries()[0] / "solver.so";
@@ -154,7 +154,7 @@ TEST_F(SolverCache, FlippedBytesAreDetectedAndRebuilt) {
 
 TEST_F(SolverCache, MissingChecksumIsRebuilt) {
   const fs::path model = write_model("m.yaml", "unchecked", 1.0);
-  const RunResult first = eval(model, "first");
+  const RunResult first = eval(model);
   ASSERT_EQ(first.status, 0) << first.err;
   ASSERT_EQ(entries().size(), 1u);
   fs::remove(entries()[0] / "solver.so.sha256");
@@ -165,7 +165,7 @@ TEST_F(SolverCache, MissingChecksumIsRebuilt) {
 // replaced together with its checksum): the load fails, the entry is rebuilt.
 TEST_F(SolverCache, UnloadableLibraryWithAMatchingChecksumIsRebuilt) {
   const fs::path model = write_model("m.yaml", "unloadable", 1.0);
-  const RunResult first = eval(model, "first");
+  const RunResult first = eval(model);
   ASSERT_EQ(first.status, 0) << first.err;
   ASSERT_EQ(entries().size(), 1u);
   const fs::path library = entries()[0] / "solver.so";
@@ -186,7 +186,7 @@ TEST_F(SolverCache, FailedCompileLeavesNothingBehindAndShowsTheCompilersMessage)
        "echo \"fake-cc: error: simulated compiler failure in $#-argument command\" >&2\n"
        "exit 1\n");
   fs::permissions(fake, fs::perms::owner_all);
-  const RunResult failed = eval(model, "failed", "MBFE_JIT_COMPILER_OVERRIDE=" + quote(fake.string()));
+  const RunResult failed = eval(model, "MBFE_JIT_COMPILER_OVERRIDE=" + quote(fake.string()));
   // A compiler that fails on generated code is not the user's input: status 1.
   EXPECT_EQ(failed.status, 1) << failed.err;
   EXPECT_NE(failed.err.find("compiling the solver of 'doomed' failed"), std::string::npos) << failed.err;
@@ -196,7 +196,7 @@ TEST_F(SolverCache, FailedCompileLeavesNothingBehindAndShowsTheCompilersMessage)
   EXPECT_TRUE(leftovers().empty()) << leftovers().front();
 
   // Nothing poisoned: the real compiler then builds the same model.
-  const RunResult ok = eval(model, "ok");
+  const RunResult ok = eval(model);
   EXPECT_EQ(ok.status, 0) << ok.err;
   EXPECT_NE(ok.err.find("compiled the solver"), std::string::npos) << ok.err;
   EXPECT_EQ(entries().size(), 1u);
@@ -204,20 +204,20 @@ TEST_F(SolverCache, FailedCompileLeavesNothingBehindAndShowsTheCompilersMessage)
 
 TEST_F(SolverCache, KeyChangesWhenTheModelChangesAndIsStableOtherwise) {
   const fs::path a = write_model("a.yaml", "keyed", 1.0);
-  const RunResult first = eval(a, "first");
+  const RunResult first = eval(a);
   ASSERT_EQ(first.status, 0) << first.err;
   ASSERT_EQ(entries().size(), 1u);
   const fs::path entry_a = entries()[0];
   EXPECT_EQ(entry_a.filename().string().rfind("keyed-", 0), 0u) << entry_a;
 
   // Same model, same file: the same entry.
-  const RunResult same = eval(a, "same");
+  const RunResult same = eval(a);
   EXPECT_NE(same.err.find("using cached solver " + (entry_a / "solver.so").string()), std::string::npos)
       << same.err;
 
   // A different mass: new sources, a new key, a second entry; the first stays.
   const fs::path b = write_model("b.yaml", "keyed", 2.5);
-  const RunResult changed = eval(b, "changed");
+  const RunResult changed = eval(b);
   ASSERT_EQ(changed.status, 0) << changed.err;
   EXPECT_NE(changed.err.find("compiled the solver"), std::string::npos) << changed.err;
   EXPECT_NE(changed.out, first.out);
@@ -227,7 +227,7 @@ TEST_F(SolverCache, KeyChangesWhenTheModelChangesAndIsStableOtherwise) {
   EXPECT_EQ(names.count(entry_a.filename().string()), 1u);
 
   // Back to the first model: reused, not rebuilt.
-  const RunResult back = eval(a, "back");
+  const RunResult back = eval(a);
   EXPECT_NE(back.err.find("using cached solver"), std::string::npos) << back.err;
   EXPECT_EQ(back.out, first.out);
 }
@@ -238,7 +238,7 @@ TEST_F(SolverCache, StaleBuildFoldersOfKilledProcessesAreRemoved) {
   fs::create_directories(cache() / ".build-new456");
   const auto two_hours_ago = fs::file_time_type::clock::now() - std::chrono::hours(2);
   fs::last_write_time(cache() / ".build-old123", two_hours_ago);
-  const RunResult r = eval(write_model("m.yaml", "sweeper", 1.0), "sweep");
+  const RunResult r = eval(write_model("m.yaml", "sweeper", 1.0));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_FALSE(fs::exists(cache() / ".build-old123"));
   EXPECT_TRUE(fs::exists(cache() / ".build-new456"));  // may belong to a running compile

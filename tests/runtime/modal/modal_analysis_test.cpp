@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "tests/fem/beam_fixtures.h"
+#include "tests/runtime/fem/beam_fixtures.h"
 #include "runtime/fem/beam_system.h"
 #include "runtime/modal/modal_analysis.h"
 

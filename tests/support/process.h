@@ -1,8 +1,9 @@
-// Helpers for the robustness tests that run the `mbfe` binary (MBFE_CLI) in
-// separate processes: a private temporary folder per test (also used as
-// MBFE_CACHE_DIR), running a command line with captured stdout and stderr, and
-// starting a process that the test can signal.
+// Helpers for the tests that run the `mbfe` binary (MBFE_CLI) in separate
+// processes beyond tests/support/cli.h: a private temporary folder per test
+// (also used as MBFE_CACHE_DIR), and a process the test can signal.
 #pragma once
+
+#include "tests/support/cli.h"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -28,11 +29,8 @@ namespace mbfe::test {
 
 namespace fs = std::filesystem;
 
-inline std::string quote(const std::string& text) {
-  std::string q = "'";
-  for (char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
+using test::shell_quote;
+inline std::string quote(const std::string& text) { return shell_quote(text); }
 
 inline std::string slurp(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -69,11 +67,7 @@ class TempDir {
   fs::path path_;
 };
 
-struct RunResult {
-  int status = -1;  // exit status; 128 + signal number if killed by a signal
-  std::string out;
-  std::string err;
-};
+using RunResult = CliRun;
 
 inline int decode_status(int raw) {
   if (WIFEXITED(raw)) return WEXITSTATUS(raw);
@@ -81,18 +75,10 @@ inline int decode_status(int raw) {
   return -1;
 }
 
-/// Runs `env_prefix mbfe args` through the shell (from the source tree, so
-/// that models/... paths work), stdout and stderr captured into `dir`.
-inline RunResult run_mbfe(const TempDir& dir, const std::string& args, const std::string& env_prefix = "",
-                          const std::string& tag = "run") {
-  const fs::path out = dir / (tag + ".stdout"), err = dir / (tag + ".stderr");
-  const std::string command = "cd " + quote(MBFE_SOURCE_DIR) + " && " + env_prefix + " " + quote(MBFE_CLI) +
-                              " " + args + " >" + quote(out.string()) + " 2>" + quote(err.string());
-  RunResult r;
-  r.status = decode_status(std::system(command.c_str()));
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+/// `env_prefix mbfe args` from the source tree (run_cli); `dir` is the test's
+/// folder, whose cache the caller names in env_prefix.
+inline RunResult run_mbfe(const TempDir& /*dir*/, const std::string& args, const std::string& env_prefix = "") {
+  return run_cli(args, env_prefix);
 }
 
 /// A process started with posix_spawn (SIGINT at its default disposition and
