@@ -162,6 +162,11 @@ TEST(ContactKernels, PinMatchesFiniteDifferences) {
 // Global assembly: J_b and J_c (scattered through full_to_free) against central
 // differences of the stacked Phi, with the slider within 1e-9 m of a node so
 // that the differences cross into the neighbouring element.
+// Newton on s(q) = target, 1 m beam: converged to round-off.
+constexpr double kSliderPositionTol = 1e-12;
+// The two formulations solve the same linear system in other orders; the partitioned one also closes Phi to 1e-10 m.
+constexpr double kFormulationForceRel = 1e-9;
+
 TEST(ContactConstraints, GlobalJacobiansMatchFiniteDifferencesAtElementBoundaries) {
   // Phi is only C1 across a node (w'' jumps): central differences with step
   // 1e-7 then err by ~step x |jump of Phi''| ~ 1e-7 x O(10); a wrong column
@@ -193,7 +198,7 @@ TEST(ContactConstraints, GlobalJacobiansMatchFiniteDifferencesAtElementBoundarie
     for (int i = 0; i < nc; ++i) qc(i) = 0.01 * u(rng);
     ConstraintValues cv;
     cc.evaluate(0.0, q.data(), qc.data(), nullptr, nullptr, cv);
-    ASSERT_NEAR(cv.s[0], target, 1e-12);
+    ASSERT_NEAR(cv.s[0], target, kSliderPositionTol);
     const Eigen::MatrixXd jc = cv.jc_dense(nc);
     const double h = 1e-7;
     auto phi = [&](const Eigen::Vector2d& qq, const Eigen::VectorXd& qqc) {
@@ -416,7 +421,7 @@ TEST(CoupledSystem, DenseAdjustedOperatorsPlugInUnchanged) {
   const ContactReport ra = a.report(0.0, ya);
   const ContactReport rb = aug.report(0.0, aug.initial_state(0.0, q, qd));
   ASSERT_EQ(ra.lambda.size(), 1);
-  EXPECT_NEAR(ra.lambda(0), rb.lambda(0), 1e-9 * std::abs(rb.lambda(0)));
+  EXPECT_NEAR(ra.lambda(0), rb.lambda(0), kFormulationForceRel * std::abs(rb.lambda(0)));
   EXPECT_LT(ra.phi_max, kPhiTol);
 }
 

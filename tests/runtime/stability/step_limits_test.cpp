@@ -19,6 +19,13 @@ using cplx = std::complex<double>;
 // Companion-matrix roots and 60 bisections: limits good to ~1e-10 relative.
 constexpr double kLimitTol = 1e-8;
 
+// RK4: roots of |R|^2 - 1 from a companion matrix, ~1e-12 relative.
+constexpr double kRootLimitTol = 1e-9;
+// Multistep methods: the boundary-locus crossing is bisected to ~1e-9.
+constexpr double kLocusLimitTol = 1e-7;
+// 0.1577 is the leading-order estimate s^3 = 4e-3, good to its last digit.
+constexpr double kLeadingOrderTol = 1e-3;
+
 TEST(StepLimits, KnownValues) {
   const auto fe = parse_integrator("forward_euler");
   const auto rk4 = parse_integrator("rk4");
@@ -27,11 +34,11 @@ TEST(StepLimits, KnownValues) {
   EXPECT_NEAR(stable_step(fe, cplx(-1, 0)).h, 2.0, kLimitTol);
   EXPECT_NEAR(stable_step(fe, cplx(-3, 4)).h, 6.0 / 25.0, kLimitTol);
   EXPECT_EQ(stable_step(fe, cplx(0, 4)).kind, StepLimit::Kind::kNone);  // undamped mode
-  EXPECT_NEAR(stable_step(rk4, cplx(-1, 0)).h, 2.785293563405282, 1e-9);
-  EXPECT_NEAR(stable_step(rk4, cplx(0, 1)).h, 2.0 * std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(stable_step(rk4, cplx(-1, 0)).h, 2.785293563405282, kRootLimitTol);
+  EXPECT_NEAR(stable_step(rk4, cplx(0, 1)).h, 2.0 * std::sqrt(2.0), kRootLimitTol);
   EXPECT_EQ(stable_step(mid, cplx(-1, 0)).kind, StepLimit::Kind::kNone);  // Fig. 3
-  EXPECT_NEAR(stable_step(mid, cplx(0, 2)).h, 0.5, 1e-7);
-  EXPECT_NEAR(stable_step(ab2, cplx(-1, 0)).h, 1.0, 1e-7);
+  EXPECT_NEAR(stable_step(mid, cplx(0, 2)).h, 0.5, kLocusLimitTol);
+  EXPECT_NEAR(stable_step(ab2, cplx(-1, 0)).h, 1.0, kLocusLimitTol);
   // AB2's principal root on the imaginary axis is 1 + (h omega)^4 / 4 + ...:
   // an undamped mode grows at every step size, as under forward Euler. (The
   // advisor used to call it "unconditional": rounding near the origin of the
@@ -40,7 +47,7 @@ TEST(StepLimits, KnownValues) {
   EXPECT_EQ(stable_step(ab2, cplx(0, 4.338)).kind, StepLimit::Kind::kNone);
   // Slightly damped: the boundary Re z ~ -|z|^4 / 4 crosses the ray where
   // s^3 ~ 4 * 1e-3, s ~ 0.159.
-  EXPECT_NEAR(stable_step(ab2, cplx(-1e-3, 1)).h, 0.1577, 1e-3);
+  EXPECT_NEAR(stable_step(ab2, cplx(-1e-3, 1)).h, 0.1577, kLeadingOrderTol);
   for (const char* a : {"backward_euler", "trapezoid", "bdf2", "generalized_alpha"}) {
     EXPECT_EQ(stable_step(parse_integrator(a), cplx(-1e8, 0)).kind, StepLimit::Kind::kUnconditional) << a;
     EXPECT_EQ(stable_step(parse_integrator(a), cplx(-1, 1e3)).kind, StepLimit::Kind::kUnconditional) << a;
@@ -66,7 +73,7 @@ TEST(StepLimits, GrowingModesAreSplitOffAndRoundingIsZeroed) {
   // with it, RK4 is limited by the undamped pair (2 sqrt 2 / 5) and the
   // A-stable methods are unconditional again.
   const auto rk4 = parse_integrator("rk4");
-  EXPECT_NEAR(stable_step(rk4, split.limiting.eigenvalues).h, 2.0 * std::sqrt(2.0) / 5.0, 1e-9);
+  EXPECT_NEAR(stable_step(rk4, split.limiting.eigenvalues).h, 2.0 * std::sqrt(2.0) / 5.0, kRootLimitTol);
   EXPECT_EQ(stable_step(parse_integrator("backward_euler"), split.limiting.eigenvalues).kind,
             StepLimit::Kind::kUnconditional);
   EXPECT_EQ(stable_step(parse_integrator("forward_euler"), split.limiting.eigenvalues).kind,
@@ -127,7 +134,7 @@ TEST(StepLimits, UserLmmBoundaryLocus) {
   // Adams-Bashforth 3: real-axis limit 6/11.
   const auto ab3 = parse_integrator(
       "lmm:alpha=0,0,-1,1:beta=0.4166666666666667,-1.3333333333333333,1.9166666666666667,0");
-  EXPECT_NEAR(stable_step(ab3, cplx(-1, 0)).h, 6.0 / 11.0, 1e-7);
+  EXPECT_NEAR(stable_step(ab3, cplx(-1, 0)).h, 6.0 / 11.0, kLocusLimitTol);
   // Not zero-stable (rho = (z - 1)(z - 2)... here z^2 - 3z + 2): no step.
   const auto bad = parse_integrator("lmm:alpha=2,-3,1:beta=0,1,0");
   EXPECT_EQ(stable_step(bad, cplx(-1, 0)).kind, StepLimit::Kind::kNone);
