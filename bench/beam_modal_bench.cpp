@@ -1,4 +1,4 @@
-// Beam FE + modal analysis speed (issue 3):
+// Beam FE + modal analysis speed:
 //  - the paper beam (100 DOF): assembly + dense modal analysis + state-space
 //    eigenvalues (target < 50 ms);
 //  - a 100,000-DOF beam: its 20 lowest modes by sparse shift-invert Lanczos

@@ -4,7 +4,7 @@
 // of values) so that
 // nothing absurd reaches yaml-cpp; yaml-cpp builds a tree, and any exception
 // it throws becomes a ModelError at its mark; the tree is walked section by
-// section against the schema of the model-file contracts (issues 2 to 5),
+// section against the schema of the model format (docs/model-format.md),
 // each value checked and each cross reference resolved to an index.
 #include "frontend/parse_model.h"
 

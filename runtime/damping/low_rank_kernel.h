@@ -1,4 +1,4 @@
-// The hot loop of an adjusted beam in nodal coordinates (method-notes
+// The hot loop of an adjusted beam in nodal coordinates (the low-rank form of
 // section 3), once per right-hand side of a coupled model:
 //
 //   a -= Phi_L (d_C .* (U^T qd) + d_K .* (U^T q)),     U = M Phi_L (n x m)

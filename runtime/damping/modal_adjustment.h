@@ -1,5 +1,5 @@
 // Modal adjustment of damping (Section 6 of the paper, eqs (24)-(27); read
-// ../shared/docs/method-notes.md section 2 for why the default is a cap).
+// docs/damping-adjustment.md says why the default is a cap).
 //
 // Per mass-normalised mode j (K Phi = M Phi Omega^2) the model obeys
 // q'' + c_j q' + k_j q = p_j, with k_j = omega_j^2 and Rayleigh c_j = alpha +
@@ -22,7 +22,8 @@
 //
 // |r_fast| grows with omega_j for Rayleigh damping, so the adjusted modes of
 // `cap` are a tail of the ascending spectrum: the low-rank form of
-// method-notes section 3 needs only the modes below it.
+// form (docs/damping-adjustment.md, "Back to nodal coordinates") needs only
+// the modes below it.
 #pragma once
 
 #include <Eigen/Core>
@@ -61,7 +62,7 @@ AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const ir::Ad
 /// A symmetric n x n operator A = S + s M + U diag(d) U^T, with S sparse
 /// (possibly empty), M the mass matrix and U = M Phi_L (n x m) dense: the form
 /// shared by the original K and C (S only), the low-rank adjusted ones
-/// (method-notes section 3: s = k_star, d_j = k_j - k_star over the kept modes)
+/// (the low-rank form of docs/damping-adjustment.md: s = k_star, d_j = k_j - k_star over the kept modes)
 /// and eq (27) with every mode (s = 0, d_j = k_j). Never an n x n dense matrix
 /// unless m = n.
 struct NodalOperator {
@@ -80,7 +81,7 @@ struct NodalAdjusted {
   Eigen::MatrixXd U;    // n x m, M Phi_L
   Eigen::MatrixXd phi;  // n x m, Phi_L
   NodalOperator K, C;
-  bool low_rank = false;  // true: method-notes section 3; false: eq (27) over every mode
+  bool low_rank = false;  // true: the low-rank form; false: eq (27) over every mode
 };
 
 /// Method-notes section 3: only the modes that are not adjusted (the first

@@ -1,5 +1,5 @@
 // The linearised, partitioned coupled system at one state: what `mbfe stability`
-// and `mbfe modal` analyse for a coupled model (issue 5).
+// and `mbfe modal` analyse for a coupled model.
 //
 // The partitioned system (eqs (16)-(17)) is y' = f(t, y), y = [z; z'],
 // z = [u; q_c]. Its Jacobian is

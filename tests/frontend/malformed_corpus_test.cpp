@@ -1,5 +1,5 @@
 // Every file of tests/malformed/ must be refused with a located, named error,
-// quickly, and without crashing (issue 6).
+// quickly, and without crashing (docs/robustness.md).
 //
 // Each corpus file starts with two comment lines:
 //   # expect: <a substring of the error message>

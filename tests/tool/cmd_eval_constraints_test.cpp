@@ -1,4 +1,4 @@
-// `mbfe eval --json` constraints block (issue 5 contract) against finite
+// `mbfe eval --json` constraints block against finite
 // differences of Phi from `mbfe eval` itself, for both shipped coupled models:
 // J_b = dPhi/dq_b, J_c = dPhi/dq_c and gamma = -(dJ/dt) q'.
 #include <gtest/gtest.h>

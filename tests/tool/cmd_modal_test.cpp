@@ -1,5 +1,5 @@
 // `mbfe modal` end to end: runs the built binary (MBFE_CLI) on the shipped
-// models and checks the text and the JSON contract of issue 3.
+// models and checks the text and the JSON of `mbfe modal --json`.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -22,7 +22,7 @@ CliRun run_cli(const std::string& args) {
   return r;
 }
 
-// JSON doubles round-trip exactly; the reference is method-notes' h_max
+// JSON doubles round-trip exactly; the reference is docs/reference-values.md's h_max
 // (6 digits: half a unit is 5e-14).
 constexpr double kHmaxPrintedTol = 5e-14;
 

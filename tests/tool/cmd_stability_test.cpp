@@ -22,8 +22,8 @@ std::string tmp(const std::string& name) {
   return std::string(MBFE_BINARY_DIR) + "/cli_test_" + std::to_string(::getpid()) + "_" + name;
 }
 
-// method-notes prints 6 significant digits.
-constexpr double kNotesRel = 5e-6;
+// docs/reference-values.md prints 6 significant digits.
+constexpr double kReferenceRel = 5e-6;
 
 // The root 1.370156e5 is known to 7 digits, the constant 2.785293563 to 10.
 constexpr double kPrintedRel = 1e-5;
@@ -36,8 +36,8 @@ TEST(CmdStability, JsonContract) {
   const CliRun r = run_cli("stability models/paper_beam.yaml --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_NEAR(j.at("original").at("forward_euler").get<double>(), 1.52098e-8, kNotesRel * 1.52098e-8);
-  EXPECT_NEAR(j.at("adjusted").at("forward_euler").get<double>(), 1.45969e-5, kNotesRel * 1.45969e-5);
+  EXPECT_NEAR(j.at("original").at("forward_euler").get<double>(), 1.52098e-8, kReferenceRel * 1.52098e-8);
+  EXPECT_NEAR(j.at("adjusted").at("forward_euler").get<double>(), 1.45969e-5, kReferenceRel * 1.45969e-5);
   // RK4's real-axis limit 2.785293563 / 1.370156e5.
   EXPECT_NEAR(j.at("adjusted").at("rk4").get<double>(), 2.785293563 / 1.370156e5, kPrintedRel * 2.0328e-5);
   EXPECT_EQ(j.at("adjusted").at("explicit_midpoint"), "none");
@@ -80,7 +80,7 @@ TEST(CmdSimulateBeam, PaperResultFromTheCommandLine) {
   EXPECT_EQ(last.find("nan"), std::string::npos);
   EXPECT_EQ(last.find("inf"), std::string::npos);
   // The stable run ends at t = 1 near the static deflection (2.134e-2 m down,
-  // method-notes section 5; the 5 % floor has damped mode 1 to ~1e-3 of it).
+  // docs/reference-values.md; the 5 % floor has damped mode 1 to ~1e-3 of it).
   std::ifstream okin(ok);
   while (std::getline(okin, line)) last = line;
   const double w = std::stod(last.substr(last.find(',') + 1));
@@ -140,7 +140,7 @@ TEST(CmdModal, AdjustedBlock) {
   EXPECT_EQ(a.at("policy"), "cap");
   EXPECT_EQ(a.at("eigenvalues").size(), 200u);
   EXPECT_EQ(a.at("oscillatory_pairs"), 13);
-  EXPECT_NEAR(a.at("h_max").at("forward_euler").get<double>(), 1.45969e-5, kNotesRel * 1.45969e-5);
+  EXPECT_NEAR(a.at("h_max").at("forward_euler").get<double>(), 1.45969e-5, kReferenceRel * 1.45969e-5);
   EXPECT_NEAR(a.at("eigenvalues").at(0).at(0).get<double>(), -3.6817, kFourDecimals);
   const CliRun text = run_cli("modal models/paper_beam.yaml");
   EXPECT_NE(text.out.find("adjusted (Table 1, right half)"), std::string::npos);

@@ -1,4 +1,4 @@
-// What the modal adjustment costs in accuracy (method-notes section 5,
+// What the modal adjustment costs in accuracy (docs/reference-values.md,
 // docs/accuracy-vs-cost.md), without time stepping: the exact midspan
 // deflection of the paper beam (gravity + 10 N at midspan stepped on at t = 0,
 // from rest) by modal superposition, each mode's step response in closed form,
@@ -6,14 +6,13 @@
 // block (cap at omega_limit 1e5, margin 0.1, with and without zeta_min 0.05).
 //
 // Model error = max over a time grid on 0..1 s of |w_adjusted - w_original|,
-// divided by the peak |w_original| (method-notes: 1.4e-6 for the cap alone,
-// 3.4e-1 with the floor). The grid matters for the cap: its change is a
-// transient in the first ~0.5 ms (the capped modes' slow roots ~7e4 1/s
-// instead of the original overdamped modes' ~7e3 1/s) on top of a static
-// shift of 2.56e-6 of the static deflection (1.30e-6 of the peak). Sampled at
-// 2e-4 s or coarser only the shift is seen: 1.30e-6 of the peak, 8 % below the
-// notes' 1.4e-6 (the notes do not give their grid; this project could not
-// reproduce the second digit). Sampled every 1e-5 s: 4.97e-6.
+// divided by the peak |w_original|. The independent computation of
+// docs/reference-values.md gives 4.97e-6 (1e-5 s grid) and 1.30e-6 (1e-3 s
+// grid) for the cap alone, 0.338 with the floor. The grid matters for the cap:
+// its change is a transient in the first ~0.5 ms (the capped modes' slow roots
+// ~7e4 1/s instead of the original overdamped modes' ~7e3 1/s) on top of a
+// static shift of 2.56e-6 of the static deflection (1.30e-6 of the peak), the
+// only part a grid of 2e-4 s or coarser sees.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,13 +28,9 @@
 namespace mbfe::runtime {
 namespace {
 
-// Method-notes prints 2 significant digits: 5 % relative covers the printing
-// (3.4e-1 is 3.35..3.45e-1) but not a different definition or grid.
-constexpr double kNotesPrint = 0.05;
-// The cap's coarse-grid error is 1.298e-6 here against the notes' 1.4e-6
-// (see above): 10 % accepts that unexplained second digit, not a factor 2 or
-// the fine-grid 4.97e-6.
-constexpr double kNotesCapDiscrepancy = 0.10;
+// The reference prints 3 significant digits (0.338, 1.30e-6, 4.97e-6): half a
+// unit in the last digit is at most 0.4 % of the value.
+constexpr double kReferencePrint = 0.004;
 // The exact modal sums are deterministic to round-off (~1e-12 relative);
 // 1 % of our own figures catches any change of the model, grid or formula.
 constexpr double kOwnFigure = 0.01;
@@ -96,7 +91,7 @@ constexpr double kAtRestTol = 1e-15;
 // The floor changes damping only: the static sums differ by rounding of 100 terms.
 constexpr double kSameStaticRel = 1e-12;
 
-TEST(AdjustmentAccuracy, ReferenceMatchesMethodNotes) {
+TEST(AdjustmentAccuracy, ExactResponseMatchesTheReferenceValues) {
   const Models& m = models();
   // The exact response starts at rest and settles on the static solution K^-1 P.
   EXPECT_NEAR(m.original.w(0.0), 0.0, kAtRestTol);
@@ -109,20 +104,19 @@ TEST(AdjustmentAccuracy, ReferenceMatchesMethodNotes) {
 TEST(AdjustmentAccuracy, CapAloneIsAlmostFree) {
   const Models& m = models();
   const double pk = peak(m.original, 1e-5);
-  // Coarse grid (1e-3 s): the static shift. Ours, and the notes' 1.4e-6.
+  // Coarse grid (1e-3 s): the static shift.
   const double coarse = model_error(m.cap, m.original, 1e-3) / pk;
-  EXPECT_NEAR(coarse, 1.298e-6, kOwnFigure * 1.298e-6);
-  EXPECT_NEAR(coarse, 1.4e-6, kNotesCapDiscrepancy * 1.4e-6);
-  // The static shift behind it (method-notes section 2: "3e-6", one digit:
-  // anything in [2.5e-6, 3.5e-6) prints as 3e-6).
+  EXPECT_NEAR(coarse, 1.30e-6, kReferencePrint * 1.30e-6);
+  // The static shift behind it (the reference: 2.6e-6, two digits, so
+  // anything in [2.55e-6, 2.65e-6)).
   const double shift = std::abs(m.cap.w_static() - m.original.w_static()) / std::abs(m.original.w_static());
-  EXPECT_GE(shift, 2.5e-6);
-  EXPECT_LT(shift, 3.5e-6);
+  EXPECT_GE(shift, 2.55e-6);
+  EXPECT_LT(shift, 2.65e-6);
   // Fine grid (1e-5 s): the transient of the first half millisecond, 4.97e-6
   // of the peak: still below 1e-5 (the cap is almost free), and 5e4 times
   // smaller than the floor's change below.
   const double fine = model_error(m.cap, m.original, 1e-5) / pk;
-  EXPECT_NEAR(fine, 4.97e-6, kOwnFigure * 4.97e-6);
+  EXPECT_NEAR(fine, 4.97e-6, kReferencePrint * 4.97e-6);
   EXPECT_LT(fine, 1e-5);
 }
 
@@ -130,7 +124,7 @@ TEST(AdjustmentAccuracy, DampingFloorChangesTheResponse) {
   const Models& m = models();
   const double pk = peak(m.original, 1e-5);
   // 0.3383 (1e-3 s grid) and 0.3385 (1e-5 s): the grid hardly matters here.
-  EXPECT_NEAR(model_error(m.cap_floor, m.original, 1e-3) / pk, 3.4e-1, kNotesPrint * 3.4e-1);
+  EXPECT_NEAR(model_error(m.cap_floor, m.original, 1e-3) / pk, 0.338, kReferencePrint * 0.338);
   EXPECT_NEAR(model_error(m.cap_floor, m.original, 1e-5) / pk, 3.385e-1, kOwnFigure * 3.385e-1);
   // Not a static effect: both settle on the same deflection within the cap's shift.
   EXPECT_NEAR(m.cap_floor.w_static(), m.cap.w_static(), kSameStaticRel * std::abs(m.cap.w_static()));

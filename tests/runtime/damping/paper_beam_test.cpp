@@ -1,6 +1,6 @@
 // The paper's result (Section 7, Table 1 right half, Fig. 5) reproduced on
 // models/paper_beam.yaml, against the reference numbers of
-// ../shared/docs/method-notes.md (sections 1 and 2).
+// docs/reference-values.md (computed by scripts/reference_values.py).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,9 +17,9 @@
 namespace mbfe::runtime {
 namespace {
 
-// The method-notes values are printed with 6-7 significant digits; the dense
+// The reference values are printed with 6-7 significant digits; the dense
 // 100-DOF eigen-solver is good to ~1e-10. 5e-6 relative is the printing.
-constexpr double kNotesRel = 5e-6;
+constexpr double kReferenceRel = 5e-6;
 
 const ir::Model& paper_model() {
   static const ir::Model m = frontend::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml");
@@ -47,19 +47,19 @@ constexpr double kFourDecimals = 5e-5;
 // The floor sets c = 2 zeta omega exactly; the ratio is read back from the roots.
 constexpr double kFloorRatioTol = 1e-12;
 
-TEST(PaperBeam, AdjustedSpectrumMatchesMethodNotes) {
+TEST(PaperBeam, AdjustedSpectrumMatchesTheReferenceValues) {
   const BeamModel& b = paper_beams();
   ASSERT_EQ(b.dof, 100);
   ASSERT_EQ(b.adjusted.eigenvalues.size(), 200u);
-  EXPECT_NEAR(max_modulus(b.adjusted), 1.370156e5, kNotesRel * 1.370156e5);
+  EXPECT_NEAR(max_modulus(b.adjusted), 1.370156e5, kReferenceRel * 1.370156e5);
   // Every capped mode ends at the same fastest root: -1.370156e5 (real).
   EXPECT_EQ(b.adjusted.eigenvalues.back().imag(), 0.0);
   const auto first = b.adjusted.eigenvalues.front();
   EXPECT_NEAR(first.real(), -3.6817, kFourDecimals);
   EXPECT_NEAR(std::abs(first.imag()), 73.5417, kFourDecimals);
   const auto fe = parse_integrator("forward_euler");
-  EXPECT_NEAR(stable_step(fe, b.original.eigenvalues).h, 1.52098e-8, kNotesRel * 1.52098e-8);
-  EXPECT_NEAR(stable_step(fe, b.adjusted.eigenvalues).h, 1.45969e-5, kNotesRel * 1.45969e-5);
+  EXPECT_NEAR(stable_step(fe, b.original.eigenvalues).h, 1.52098e-8, kReferenceRel * 1.52098e-8);
+  EXPECT_NEAR(stable_step(fe, b.adjusted.eigenvalues).h, 1.45969e-5, kReferenceRel * 1.45969e-5);
   // Table 1: the floor raises modes 1..3 to 5 % and leaves mode 5 pair (4.99 %) at 5 %.
   EXPECT_NEAR(-first.real() / std::abs(first), 0.05, kFloorRatioTol);
 }
@@ -69,8 +69,8 @@ TEST(PaperBeam, LiteralEq25GivesOnly94x) {
   ir::Adjustment a = paper_model().beams.at(0).adjustment;
   a.policy = ir::AdjustmentPolicy::kPaperEq25;
   const StateSpectrum s = state_spectrum(adjust_modes(p.original, a).modes);
-  EXPECT_NEAR(max_modulus(s), 1.40264e6, kNotesRel * 1.40264e6);
-  EXPECT_NEAR(stable_step(parse_integrator("forward_euler"), s.eigenvalues).h, 1.42588e-6, kNotesRel * 1.42588e-6);
+  EXPECT_NEAR(max_modulus(s), 1.40264e6, kReferenceRel * 1.40264e6);
+  EXPECT_NEAR(stable_step(parse_integrator("forward_euler"), s.eigenvalues).h, 1.42588e-6, kReferenceRel * 1.42588e-6);
 }
 
 TEST(PaperBeam, KeepSlowReachesTheSameLimitAsCap) {
@@ -80,7 +80,7 @@ TEST(PaperBeam, KeepSlowReachesTheSameLimitAsCap) {
   const AdjustedModes keep = adjust_modes(p.original, a);
   EXPECT_FALSE(keep.uniform);
   const StateSpectrum s = state_spectrum(keep.modes);
-  EXPECT_NEAR(max_modulus(s), 1.370156e5, kNotesRel * 1.370156e5);
+  EXPECT_NEAR(max_modulus(s), 1.370156e5, kReferenceRel * 1.370156e5);
 }
 
 /// Forward Euler from rest on the original (nodal, sparse) or adjusted (modal) model.

@@ -1,5 +1,5 @@
 // State-space eigenvalues of eq (28): the reference numbers of
-// docs/method-notes.md (shared), the paper's own Table 1, and the per-mode
+// docs/reference-values.md, the paper's own Table 1, and the per-mode
 // path against dense eigenvalues of B.
 #include <gtest/gtest.h>
 
@@ -14,12 +14,12 @@
 namespace mbfe::runtime {
 namespace {
 
-// method-notes.md's numbers are an independent dense computation: agree to
+// The reference values are an independent dense computation: agree to
 // 1e-6 relative, or to half a unit of the last printed digit where the note
 // prints fewer than 7 significant digits (e.g. -0.408146, 6 digits: +-5e-7).
 constexpr double kReferenceRelTol = 1e-6;
 // The paper's Table 1: its frequencies run 0.05 % (mode 1) to 1.2 % (mode 5)
-// above ours (docs/beams-and-modal.md explains why); 1.5 % per issue 3.
+// above ours (docs/beams-and-modal.md explains why); within 1.5 %.
 constexpr double kPaperFrequencyTol = 0.015;
 constexpr double kPaperExtremeTol = 0.005;
 // Dense QR eigenvalues of a similarity-scaled B (200 x 200, |lambda| from
@@ -45,7 +45,7 @@ StateSpectrum paper_spectrum(ModalBasis* basis_out = nullptr) {
   return rayleigh_spectrum(basis, b.rayleigh_alpha, b.rayleigh_beta);
 }
 
-TEST(StateSpectrum, MatchesMethodNotesReference) {
+TEST(StateSpectrum, MatchesTheReferenceValues) {
   ModalBasis basis;
   const StateSpectrum s = paper_spectrum(&basis);
   ASSERT_EQ(s.eigenvalues.size(), 200u);
@@ -134,7 +134,7 @@ constexpr double kCapRootTol = 0.05;
 constexpr double kCapLimitTol = 5e-11;
 
 TEST(StateSpectrum, GenericModalTriplesFeedTheSameTable) {
-  // The cap of method-notes section 2: modes whose fast root exceeds
+  // The cap (docs/damping-adjustment.md): modes whose fast root exceeds
   // omega_l = 1e5 get k = omega_l^2 and c = (2 + 0.1) omega_l.
   ModalBasis basis;
   paper_spectrum(&basis);

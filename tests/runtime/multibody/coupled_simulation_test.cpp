@@ -98,7 +98,7 @@ Final simulate(CoupledModel& cm, bool augmented, const std::string& integrator, 
 constexpr double kFormulationAngleTol = 1e-7;
 constexpr double kFormulationForceRelTol = 1e-5;
 // The partitioned formulation closes v by Newton to below 1e-10 m at every
-// evaluation (issue 5): |Phi| of every accepted state stays below that.
+// evaluation: |Phi| of every accepted state stays below that.
 constexpr double kClosureTol = 1e-10;
 
 TEST(CoupledSimulation, PartitionedAndAugmentedAgreeOnDoublePendulumBeam) {
@@ -148,10 +148,10 @@ TEST(CoupledSimulation, PaperPlatformAdjustedStableAtLimitAndOriginalDivergesAt1
   ASSERT_EQ(h_orig.kind, runtime::StepLimit::Kind::kFinite);
   // The limits are set by the beams' fastest (capped / original) eigenvalues,
   // not by the mechanism: the beam-only values 1.45969e-5 and 1.52098e-8 s of
-  // method-notes (6 digits); the contacts touch the low modes, not these.
-  constexpr double kMethodNotesDigits = 1e-5;  // relative: 6 printed digits
-  EXPECT_NEAR(h_adj.h, 1.45969e-5, kMethodNotesDigits * 1.45969e-5);
-  EXPECT_NEAR(h_orig.h, 1.52098e-8, kMethodNotesDigits * 1.52098e-8);
+  // docs/reference-values.md (6 digits); the contacts touch the low modes, not these.
+  constexpr double kReferenceDigits = 1e-5;  // relative: 6 printed digits
+  EXPECT_NEAR(h_adj.h, 1.45969e-5, kReferenceDigits * 1.45969e-5);
+  EXPECT_NEAR(h_orig.h, 1.52098e-8, kReferenceDigits * 1.52098e-8);
   EXPECT_LT(h_orig.h, 1.6e-8);
   std::printf("[ coupled  ] paper_platform forward Euler limits: original %s s (eigenvalue %.6g%+.6gi), "
               "adjusted %s s (eigenvalue %.6g%+.6gi); gain %.1fx\n",
