@@ -84,7 +84,7 @@ struct NodalAdjusted {
   bool low_rank = false;  // true: the low-rank form; false: eq (27) over every mode
 };
 
-/// Method-notes section 3: only the modes that are not adjusted (the first
+/// The low-rank form (docs/damping-adjustment.md): only the modes that are not adjusted (the first
 /// ones; the rest must all be kAdjusted with the uniform cap). Works with a
 /// partial basis when its last mode is already adjusted.
 /// @throws std::invalid_argument if the adjustment is not uniform or an
