@@ -1,0 +1,117 @@
+// ModelParser: the top level, names and cross references, the initial state
+// and the simulation block.
+#include "frontend/model_parser.h"
+
+#include <cmath>
+
+namespace mbfe::frontend {
+
+void ModelParser::parse(const YAML::Node& root) {
+  const MapView top(file_, root, "", "", SourceLoc{1, 1});
+  top.allow({"model", "description", "gravity", "bodies", "loads", "beams", "contacts", "initial",
+             "simulation"});
+  const Field& name = top.require("model");
+  model_.name = top.identifier(name, limits_.max_name_length);
+  if (const Field* description = top.find("description")) top.text(*description);
+  model_.gravity = top.vec2_or("gravity", {0.0, 0.0});
+  if (const Field* bodies = top.find("bodies")) parse_bodies(top, *bodies);
+  if (const Field* beams = top.find("beams")) parse_beams(top, *beams);
+  if (model_.bodies.empty() && model_.beams.empty()) {
+    top.fail(name.value_loc, "model " + quoted(model_.name) + " has no bodies and no beams");
+  }
+  if (const Field* loads = top.find("loads")) parse_loads(top, *loads);
+  if (const Field* contacts = top.find("contacts")) parse_contacts(top, *contacts);
+  model_.initial.q.assign(model_.bodies.size(), 0.0);
+  model_.initial.qd.assign(model_.bodies.size(), 0.0);
+  if (const Field* initial = top.find("initial")) parse_initial(top.sub(*initial));
+  if (const Field* simulation = top.find("simulation")) {
+    parse_simulation(top.sub(*simulation));
+  }
+}
+
+/// Bodies and beams both name coordinates, so they share one namespace.
+void ModelParser::claim_coordinate_name(const MapView& view, const Field& field, const std::string& name) {
+  if (name == kGround) {
+    view.fail(field.value_loc,
+              view.prefixed("the name 'ground' is reserved for the ground frame"));
+  }
+  const auto [it, inserted] = coordinate_names_.emplace(name, field.value_loc);
+  if (!inserted) {
+    view.fail(field.value_loc,
+              view.prefixed("duplicate name " + quoted(name) + " (first used at line " +
+                            std::to_string(it->second.line) + ")"));
+  }
+}
+
+int ModelParser::body_index(const std::string& name) const {
+  const auto it = body_by_name_.find(name);
+  return it == body_by_name_.end() ? -1 : it->second;
+}
+
+int ModelParser::beam_index(const std::string& name) const {
+  const auto it = beam_by_name_.find(name);
+  return it == beam_by_name_.end() ? -1 : it->second;
+}
+
+/// A reference to an existing body by name, e.g. a load's `body:`.
+int ModelParser::existing_body(const MapView& view, const Field& field) const {
+  const std::string name = view.identifier(field, limits_.max_name_length);
+  const int index = body_index(name);
+  if (index < 0) view.fail(field.value_loc, view.prefixed("unknown body " + quoted(name)));
+  return index;
+}
+
+int ModelParser::existing_point(const MapView& view, const Field& field, int body) const {
+  const std::string name = view.identifier(field, limits_.max_name_length);
+  const auto& points = point_by_name_[body];
+  if (const auto it = points.find(name); it != points.end()) return it->second;
+  view.fail(field.value_loc, view.prefixed("body " + quoted(model_.bodies[body].name) +
+                                           " has no point " + quoted(name)));
+}
+
+/// The list under `field`, refused when longer than `limit`.
+std::vector<YAML::Node> ModelParser::bounded_list(const MapView& view, const Field& field, long limit, const char* limit_name) const {
+  std::vector<YAML::Node> items = view.list(field);
+  if (static_cast<long>(items.size()) > limit) {
+    view.fail(field.value_loc, field.key + ": " + std::to_string(items.size()) +
+                                   " entries, more than the limit of " + std::to_string(limit) +
+                                   " (ParseLimits::" + limit_name + ")");
+  }
+  return items;
+}
+
+void ModelParser::parse_initial(const MapView& view) {
+  view.allow({"q", "qd"});
+  if (const Field* q = view.find("q")) parse_coordinates(view.sub(*q), model_.initial.q);
+  if (const Field* qd = view.find("qd")) parse_coordinates(view.sub(*qd), model_.initial.qd);
+}
+
+/// `{body_name: value, ...}` into one value per body, model order.
+void ModelParser::parse_coordinates(const MapView& view, std::vector<double>& values) const {
+  for (const Field& entry : view.fields()) {
+    const int body = body_index(entry.key);
+    if (body < 0) {
+      const std::string hint =
+          beam_index(entry.key) >= 0 ? " (beam coordinates are not set here)" : "";
+      view.fail(entry.key_loc, view.prefixed(view.what(entry) + ": unknown body '" +
+                                             shown(entry.key) + "'" + hint));
+    }
+    values[body] = view.number(entry);
+  }
+}
+
+void ModelParser::parse_simulation(const MapView& view) {
+  view.allow({"integrator", "step", "t_end"});
+  Simulation& simulation = model_.simulation;
+  simulation.loc = view.loc();
+  if (const Field* integrator = view.find("integrator")) {
+    // The general `lmm:alpha=...:beta=...` form is for the command line (--integrator).
+    view.choice(*integrator, {"forward_euler", "backward_euler", "explicit_midpoint", "trapezoid",
+                              "rk4", "generalized_alpha", "ab2", "bdf2"});
+    simulation.integrator = integrator->value.Scalar();
+  }
+  if (const Field* step = view.find("step")) simulation.step = view.positive(*step);
+  if (const Field* t_end = view.find("t_end")) simulation.t_end = view.positive(*t_end);
+}
+
+}  // namespace mbfe::frontend

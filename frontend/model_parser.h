@@ -1,0 +1,127 @@
+// The walk of one parsed YAML document into a Model (frontend/parse_model.h
+// is the entry): a MapView per thing of the model, every value checked and
+// every cross reference resolved. Private to the front end; its methods are
+// spread over the files named for the sections they read (model_parser.cpp,
+// parse_bodies.cpp, parse_beams.cpp, parse_contacts.cpp).
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "frontend/parse_model.h"
+#include "frontend/yaml_reader.h"
+#include "ir/model.h"
+
+namespace mbfe::frontend {
+
+// The front end fills the IR: its types are used unqualified here.
+using namespace mbfe::ir;
+
+/// The name a parent takes for the ground frame; no body may take it.
+constexpr const char* kGround = "ground";
+
+/// 'name', as written (shortened, unprintable bytes escaped), for messages.
+inline std::string quoted(const std::string& name) { return "'" + shown(name) + "'"; }
+
+/// Walks one parsed YAML document into a Model.
+class ModelParser {
+ public:
+  ModelParser(const std::string& file, const ParseLimits& limits, Model& model)
+      : file_(file), limits_(limits), model_(model) {}
+
+  void parse(const YAML::Node& root);
+
+ private:
+  // ---- names -------------------------------------------------------------
+
+  /// Bodies and beams both name coordinates, so they share one namespace.
+  void claim_coordinate_name(const MapView& view, const Field& field, const std::string& name);
+
+  int body_index(const std::string& name) const;
+
+  int beam_index(const std::string& name) const;
+
+  /// A reference to an existing body by name, e.g. a load's `body:`.
+  int existing_body(const MapView& view, const Field& field) const;
+
+  int existing_point(const MapView& view, const Field& field, int body) const;
+
+  /// The list under `field`, refused when longer than `limit`.
+  std::vector<YAML::Node> bounded_list(const MapView& view, const Field& field, long limit, const char* limit_name) const;
+
+  // ---- bodies ------------------------------------------------------------
+
+  void parse_bodies(const MapView& top, const Field& field);
+
+  Body parse_body(const MapView& view);
+
+  /// Parents come before their children, which also rules out cycles.
+  int parent_index(const MapView& view, const Field& field, const std::string& child) const;
+
+  Joint parse_joint(const MapView& view);
+
+  std::vector<NamedPoint> parse_points(const MapView& body, const Field& field);
+
+  // ---- loads on bodies ---------------------------------------------------
+
+  void parse_loads(const MapView& top, const Field& field);
+
+  Load parse_load(const MapView& view);
+
+  /// An optional number >= 0, 0 when absent.
+  static double at_least_or(const MapView& view, const std::string& key, double minimum);
+
+  // ---- beams -------------------------------------------------------------
+
+  void parse_beams(const MapView& top, const Field& field);
+
+  Beam parse_beam(const MapView& view);
+
+  /// Element count, within the per-beam and whole-model limits.
+  int parse_elements(const MapView& view, const Field& field);
+
+  void parse_section(const MapView& view, Beam& beam);
+
+  void parse_material(const MapView& view, Beam& beam);
+
+  /// Node index of position `at` along the beam, which must fall on a node.
+  int node_at(const MapView& view, const Field& field, const Beam& beam) const;
+
+  std::vector<Support> parse_supports(const MapView& beam_view, const Field& field, const Beam& beam);
+
+  void parse_damping(const MapView& view, Beam& beam);
+
+  std::vector<BeamPointLoad> parse_beam_loads(const MapView& beam_view, const Field& field, const Beam& beam);
+
+  Adjustment parse_adjustment(const MapView& view);
+
+  // ---- contacts ----------------------------------------------------------
+
+  void parse_contacts(const MapView& top, const Field& field);
+
+  void parse_contact_position(const MapView& view, Contact& contact) const;
+
+  // ---- initial state and simulation -------------------------------------
+
+  void parse_initial(const MapView& view);
+
+  /// `{body_name: value, ...}` into one value per body, model order.
+  void parse_coordinates(const MapView& view, std::vector<double>& values) const;
+
+  void parse_simulation(const MapView& view);
+
+  const std::string& file_;
+  const ParseLimits& limits_;
+  Model& model_;
+  // Name -> index lookups, so that a model of many bodies parses in linear time.
+  std::unordered_map<std::string, SourceLoc> coordinate_names_;
+  std::unordered_map<std::string, int> body_by_name_;
+  std::unordered_map<std::string, int> beam_by_name_;
+  std::vector<std::unordered_map<std::string, int>> point_by_name_;  // per body
+  long long total_beam_dofs_ = 0;
+};
+
+}  // namespace mbfe::frontend

@@ -1,0 +1,141 @@
+// ModelParser: bodies, their joints and points, and the loads on bodies.
+#include "frontend/model_parser.h"
+
+#include <cmath>
+
+namespace mbfe::frontend {
+
+void ModelParser::parse_bodies(const MapView& top, const Field& field) {
+  const auto items = bounded_list(top, field, limits_.max_bodies, "max_bodies");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const MapView view(file_, items[i],
+                       item_context(items[i], "body", i, limits_.max_name_length), "",
+                       field.value_loc);
+    model_.bodies.push_back(parse_body(view));
+    const Body& body = model_.bodies.back();
+    body_by_name_.emplace(body.name, static_cast<int>(i));
+    auto& points = point_by_name_.emplace_back();
+    for (std::size_t k = 0; k < body.points.size(); ++k) {
+      points.emplace(body.points[k].name, static_cast<int>(k));
+    }
+  }
+}
+
+Body ModelParser::parse_body(const MapView& view) {
+  view.allow({"name", "parent", "joint", "mass", "inertia", "com", "points"});
+  Body body;
+  body.loc = view.loc();
+  const Field& name = view.require("name");
+  body.name = view.identifier(name, limits_.max_name_length);
+  claim_coordinate_name(view, name, body.name);
+
+  const Field& parent = view.require("parent");
+  body.parent = parent_index(view, parent, body.name);
+  body.joint = parse_joint(view.sub(view.require("joint")));
+  body.mass = view.number_at_least(view.require("mass"), 0.0);
+  body.inertia = view.number_at_least(view.require("inertia"), 0.0);
+  body.com = view.vec2_or("com", {0.0, 0.0});
+  if (const Field* points = view.find("points")) body.points = parse_points(view, *points);
+  return body;
+}
+
+/// Parents come before their children, which also rules out cycles.
+int ModelParser::parent_index(const MapView& view, const Field& field, const std::string& child) const {
+  const std::string name = view.identifier(field, limits_.max_name_length);
+  if (name == kGround) return -1;
+  if (name == child) {
+    view.fail(field.value_loc, view.prefixed("a body cannot be its own parent"));
+  }
+  const int index = body_index(name);
+  if (index >= 0) return index;
+  view.fail(
+      field.value_loc,
+      view.prefixed("unknown parent " + quoted(name) +
+                    " (a parent must be listed before its children; the root is 'ground')"));
+}
+
+Joint ModelParser::parse_joint(const MapView& view) {
+  view.allow({"type", "at", "axis"});
+  Joint joint;
+  joint.loc = view.loc();
+  joint.type = view.choice(view.require("type"), {"revolute", "prismatic"}) == 0
+                   ? JointType::kRevolute
+                   : JointType::kPrismatic;
+  joint.at = view.vec2_or("at", {0.0, 0.0});
+  const Field* axis = view.find("axis");
+  if (joint.type == JointType::kRevolute) {
+    if (axis) {
+      view.fail(
+          axis->key_loc,
+          view.prefixed(
+              "joint.axis applies to prismatic joints only (a revolute joint turns about z)"));
+    }
+    return joint;
+  }
+  const Field& axis_field = view.require("axis");
+  const Vec2 direction = view.vec2(axis_field);
+  const double norm = std::hypot(direction[0], direction[1]);
+  if (!(norm > 0.0) || !std::isfinite(norm)) {
+    view.fail(axis_field.value_loc,
+              view.prefixed("joint.axis must be a non-zero, finite direction"));
+  }
+  joint.axis = {direction[0] / norm, direction[1] / norm};
+  return joint;
+}
+
+std::vector<NamedPoint> ModelParser::parse_points(const MapView& body, const Field& field) {
+  const MapView view = body.sub(field);
+  std::vector<NamedPoint> points;
+  for (const Field& entry : view.fields()) {
+    const std::string problem = identifier_problem(entry.key, limits_.max_name_length);
+    if (!problem.empty()) {
+      view.fail(entry.key_loc, view.prefixed("point '" + shown(entry.key) + "' " + problem));
+    }
+    points.push_back({entry.key, view.vec2(entry), entry.key_loc});
+  }
+  return points;
+}
+
+void ModelParser::parse_loads(const MapView& top, const Field& field) {
+  const auto items = top.list(field);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const MapView view(file_, items[i], "load #" + std::to_string(i + 1), "", field.value_loc);
+    model_.loads.push_back(parse_load(view));
+  }
+}
+
+Load ModelParser::parse_load(const MapView& view) {
+  Load load;
+  load.loc = view.loc();
+  const int type = view.choice(view.require("type"), {"force", "torque", "spring_damper"});
+  if (type == 0) {
+    view.allow({"type", "body", "point", "value"});
+    load.type = LoadType::kForce;
+    load.body = existing_body(view, view.require("body"));
+    if (const Field* point = view.find("point")) {
+      load.point = existing_point(view, *point, load.body);
+    }
+    load.force = view.vec2(view.require("value"));
+  } else if (type == 1) {
+    view.allow({"type", "body", "value"});
+    load.type = LoadType::kTorque;
+    load.body = existing_body(view, view.require("body"));
+    load.torque = view.number(view.require("value"));
+  } else {
+    view.allow({"type", "joint", "stiffness", "damping", "rest"});
+    load.type = LoadType::kSpringDamper;
+    load.body = existing_body(view, view.require("joint"));
+    load.stiffness = at_least_or(view, "stiffness", 0.0);
+    load.damping = at_least_or(view, "damping", 0.0);
+    load.rest = view.number_or("rest", 0.0);
+  }
+  return load;
+}
+
+/// An optional number >= 0, 0 when absent.
+double ModelParser::at_least_or(const MapView& view, const std::string& key, double minimum) {
+  const Field* field = view.find(key);
+  return field ? view.number_at_least(*field, minimum) : 0.0;
+}
+
+}  // namespace mbfe::frontend
