@@ -24,6 +24,7 @@ void ModelParser::parse(const YAML::Node& root) {
   model_.initial.q.assign(model_.bodies.size(), 0.0);
   model_.initial.qd.assign(model_.bodies.size(), 0.0);
   if (const Field* initial = top.find("initial")) parse_initial(top.sub(*initial));
+  check_something_moves(top);
   if (const Field* simulation = top.find("simulation")) {
     parse_simulation(top.sub(*simulation));
   }
@@ -81,9 +82,28 @@ std::vector<YAML::Node> ModelParser::bounded_list(const MapView& view, const Fie
 }
 
 void ModelParser::parse_initial(const MapView& view) {
-  view.allow({"q", "qd"});
+  view.allow({"q", "qd", "static"});
+  model_.initial.loc = view.loc();
   if (const Field* q = view.find("q")) parse_coordinates(view.sub(*q), model_.initial.q);
   if (const Field* qd = view.find("qd")) parse_coordinates(view.sub(*qd), model_.initial.qd);
+  if (const Field* s = view.find("static")) {
+    model_.initial.static_start = view.boolean(*s);
+    model_.initial.loc = s->value_loc;
+  }
+}
+
+/// A model whose every coordinate is driven has nothing left to integrate.
+void ModelParser::check_something_moves(const MapView& top) const {
+  if (!model_.beams.empty()) return;
+  const Body* last_driven = nullptr;
+  for (const Body& body : model_.bodies) {
+    if (!body.joint.motion) return;
+    last_driven = &body;
+  }
+  top.fail(last_driven->joint.motion_loc,
+           "body " + quoted(last_driven->name) +
+               ": joint.motion drives the last joint coordinate left; with every coordinate "
+               "driven and no beam there is nothing to simulate");
 }
 
 /// `{body_name: value, ...}` into one value per body, model order.
@@ -95,6 +115,13 @@ void ModelParser::parse_coordinates(const MapView& view, std::vector<double>& va
           beam_index(entry.key) >= 0 ? " (beam coordinates are not set here)" : "";
       view.fail(entry.key_loc, view.prefixed(view.what(entry) + ": unknown body '" +
                                              shown(entry.key) + "'" + hint));
+    }
+    if (model_.bodies[body].joint.motion) {
+      view.fail(entry.key_loc,
+                view.prefixed(view.what(entry) + ": body '" + shown(entry.key) +
+                              "' is driven (its joint.motion at line " +
+                              std::to_string(model_.bodies[body].joint.motion_loc.line) +
+                              " gives q, q' and q'' at every t); its initial value cannot be set"));
     }
     values[body] = view.number(entry);
   }

@@ -71,6 +71,9 @@ class ModelParser {
 
   Load parse_load(const MapView& view);
 
+  /// The optional `start` / `stop` (s) of a load; stop after start.
+  static TimeWindow time_window(const MapView& view);
+
   /// An optional number >= 0, 0 when absent.
   static double at_least_or(const MapView& view, const std::string& key, double minimum);
 
@@ -94,7 +97,8 @@ class ModelParser {
 
   void parse_damping(const MapView& view, Beam& beam);
 
-  std::vector<BeamPointLoad> parse_beam_loads(const MapView& beam_view, const Field& field, const Beam& beam);
+  /// Point loads into beam.loads, moving loads into beam.moving_loads.
+  void parse_beam_loads(const MapView& beam_view, const Field& field, Beam& beam);
 
   Adjustment parse_adjustment(const MapView& view);
 
@@ -112,6 +116,8 @@ class ModelParser {
   void parse_coordinates(const MapView& view, std::vector<double>& values) const;
 
   void parse_simulation(const MapView& view);
+
+  void check_something_moves(const MapView& top) const;
 
   const std::string& file_;
   const ParseLimits& limits_;

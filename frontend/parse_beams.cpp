@@ -37,7 +37,7 @@ Beam ModelParser::parse_beam(const MapView& view) {
     beam.supports = parse_supports(view, *supports, beam);
   }
   if (const Field* damping = view.find("damping")) parse_damping(view.sub(*damping), beam);
-  if (const Field* loads = view.find("loads")) beam.loads = parse_beam_loads(view, *loads, beam);
+  if (const Field* loads = view.find("loads")) parse_beam_loads(view, *loads, beam);
   if (const Field* adjustment = view.find("adjustment")) {
     beam.adjustment = parse_adjustment(view.sub(*adjustment));
   }
@@ -159,24 +159,41 @@ void ModelParser::parse_damping(const MapView& view, Beam& beam) {
   beam.rayleigh_beta = at_least_or(rayleigh, "beta", 0.0);
 }
 
-std::vector<BeamPointLoad> ModelParser::parse_beam_loads(const MapView& beam_view, const Field& field, const Beam& beam) {
-  std::vector<BeamPointLoad> loads;
+void ModelParser::parse_beam_loads(const MapView& beam_view, const Field& field, Beam& beam) {
   const auto items = beam_view.list(field);
   for (std::size_t i = 0; i < items.size(); ++i) {
     const MapView view(file_, items[i],
                        "beam " + quoted(beam.name) + ": load #" + std::to_string(i + 1), "",
                        field.value_loc);
-    view.allow({"type", "at", "value"});
-    view.choice(view.require("type"), {"point"});
-    BeamPointLoad load;
+    const Field& type = view.require("type");
+    if (view.choice(type, {"point", "moving"}) == 0) {
+      view.allow({"type", "at", "value", "start", "stop"});
+      BeamPointLoad load;
+      load.loc = view.loc();
+      const Field& at = view.require("at");
+      load.at = view.number(at);
+      load.node = node_at(view, at, beam);
+      load.value = view.expression(view.require("value"));
+      load.window = time_window(view);
+      beam.loads.push_back(load);
+      continue;
+    }
+    // A moving load's `start` is where it is at t0 (m); its time window is
+    // the part of the crossing it is on the beam, so it takes no `stop`.
+    view.allow({"type", "value", "speed", "start", "t0"});
+    BeamMovingLoad load;
     load.loc = view.loc();
-    const Field& at = view.require("at");
-    load.at = view.number(at);
-    load.node = node_at(view, at, beam);
-    load.value = view.number(view.require("value"));
-    loads.push_back(load);
+    load.value = view.expression(view.require("value"));
+    const Field& speed = view.require("speed");
+    load.speed = view.number(speed);
+    if (load.speed == 0.0) {
+      view.fail(speed.value_loc, view.prefixed("speed must not be 0 (a load standing still is a "
+                                               "'point' load at a node)"));
+    }
+    load.start = view.number_or("start", 0.0);
+    load.t0 = view.number_or("t0", 0.0);
+    beam.moving_loads.push_back(load);
   }
-  return loads;
 }
 
 Adjustment ModelParser::parse_adjustment(const MapView& view) {

@@ -55,13 +55,17 @@ int ModelParser::parent_index(const MapView& view, const Field& field, const std
 }
 
 Joint ModelParser::parse_joint(const MapView& view) {
-  view.allow({"type", "at", "axis"});
+  view.allow({"type", "at", "axis", "motion"});
   Joint joint;
   joint.loc = view.loc();
   joint.type = view.choice(view.require("type"), {"revolute", "prismatic"}) == 0
                    ? JointType::kRevolute
                    : JointType::kPrismatic;
   joint.at = view.vec2_or("at", {0.0, 0.0});
+  if (const Field* motion = view.find("motion")) {
+    joint.motion = view.expression(*motion);
+    joint.motion_loc = motion->value_loc;
+  }
   const Field* axis = view.find("axis");
   if (joint.type == JointType::kRevolute) {
     if (axis) {
@@ -109,18 +113,20 @@ Load ModelParser::parse_load(const MapView& view) {
   load.loc = view.loc();
   const int type = view.choice(view.require("type"), {"force", "torque", "spring_damper"});
   if (type == 0) {
-    view.allow({"type", "body", "point", "value"});
+    view.allow({"type", "body", "point", "value", "start", "stop"});
     load.type = LoadType::kForce;
     load.body = existing_body(view, view.require("body"));
     if (const Field* point = view.find("point")) {
       load.point = existing_point(view, *point, load.body);
     }
-    load.force = view.vec2(view.require("value"));
+    load.force = view.expression_pair(view.require("value"));
+    load.window = time_window(view);
   } else if (type == 1) {
-    view.allow({"type", "body", "value"});
+    view.allow({"type", "body", "value", "start", "stop"});
     load.type = LoadType::kTorque;
     load.body = existing_body(view, view.require("body"));
-    load.torque = view.number(view.require("value"));
+    load.torque = view.expression(view.require("value"));
+    load.window = time_window(view);
   } else {
     view.allow({"type", "joint", "stiffness", "damping", "rest"});
     load.type = LoadType::kSpringDamper;
@@ -130,6 +136,20 @@ Load ModelParser::parse_load(const MapView& view) {
     load.rest = view.number_or("rest", 0.0);
   }
   return load;
+}
+
+TimeWindow ModelParser::time_window(const MapView& view) {
+  TimeWindow window;
+  const Field* start = view.find("start");
+  const Field* stop = view.find("stop");
+  if (start) window.start = view.number(*start);
+  if (stop) window.stop = view.number(*stop);
+  if (start && stop && !(window.start < window.stop)) {
+    view.fail(stop->value_loc, view.prefixed("stop must be after start (got start " +
+                                             format_number(window.start) + " s, stop " +
+                                             format_number(window.stop) + " s)"));
+  }
+  return window;
 }
 
 /// An optional number >= 0, 0 when absent.

@@ -12,7 +12,7 @@ void ModelParser::parse_contacts(const MapView& top, const Field& field) {
     const MapView view(file_, items[i],
                        item_context(items[i], "contact", i, limits_.max_name_length), "",
                        field.value_loc);
-    view.allow({"name", "type", "body", "point", "beam", "at"});
+    view.allow({"name", "type", "body", "point", "beam", "at", "stiffness", "damping", "unilateral"});
     Contact contact;
     contact.loc = view.loc();
     const Field& name = view.require("name");
@@ -22,9 +22,20 @@ void ModelParser::parse_contacts(const MapView& top, const Field& field) {
       view.fail(name.value_loc, view.prefixed("duplicate contact name (first used at line " +
                                               std::to_string(it->second.line) + ")"));
     }
-    contact.type = view.choice(view.require("type"), {"pin", "slider_pin"}) == 0
-                       ? ContactType::kPin
-                       : ContactType::kSliderPin;
+    const Field& type = view.require("type");
+    contact.type = static_cast<ContactType>(view.choice(type, {"pin", "slider_pin", "slider_spring"}));
+    if (contact.type == ContactType::kSliderSpring) {
+      contact.stiffness = view.positive(view.require("stiffness"));
+      contact.damping = at_least_or(view, "damping", 0.0);
+      if (const Field* u = view.find("unilateral")) contact.unilateral = view.boolean(*u);
+    } else {
+      for (const char* key : {"stiffness", "damping", "unilateral"}) {
+        if (const Field* f = view.find(key)) {
+          view.fail(f->key_loc, view.prefixed(std::string("'") + key +
+                                              "' is only for a slider_spring contact"));
+        }
+      }
+    }
     contact.body = existing_body(view, view.require("body"));
     contact.point = existing_point(view, view.require("point"), contact.body);
     const Field& beam = view.require("beam");
@@ -40,7 +51,7 @@ void ModelParser::parse_contacts(const MapView& top, const Field& field) {
 
 void ModelParser::parse_contact_position(const MapView& view, Contact& contact) const {
   const Field* at = view.find("at");
-  if (contact.type == ContactType::kSliderPin) {
+  if (contact.type != ContactType::kPin) {
     if (at) {
       view.fail(at->key_loc, view.prefixed("'at' is not allowed for a slider_pin (its "
                                            "position along the beam follows the body)"));

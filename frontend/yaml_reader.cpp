@@ -6,6 +6,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "frontend/expression_parser.h"
 #include "ir/identifiers.h"
 
 namespace mbfe::frontend {
@@ -244,6 +245,50 @@ Vec2 MapView::vec2(const Field& field) const {
                     field.key_loc, location_of(value[i])};
     if (component.value_loc.line == 0) component.value_loc = field.value_loc;
     result[i] = number(component);
+  }
+  return result;
+}
+
+bool MapView::boolean(const Field& field) const {
+  const YAML::Node& value = field.value;
+  if (value.IsScalar() && !is_quoted(value)) {
+    if (value.Scalar() == "true") return true;
+    if (value.Scalar() == "false") return false;
+  }
+  fail(field.value_loc, prefixed(what(field) + ": expected true or false, got " + describe(value)));
+}
+
+ir::Expression MapView::expression(const Field& field) const {
+  const YAML::Node& value = field.value;
+  if (!value.IsScalar()) {
+    fail(field.value_loc, prefixed(what(field) + ": expected a number or an expression in t, got " +
+                                   describe(value)));
+  }
+  double number = 0.0;
+  std::string why;
+  if (!is_quoted(value) && parse_double(value.Scalar(), number, why)) {
+    ir::Expression e = ir::Expression::number(number);
+    e.loc = field.value_loc;
+    return e;
+  }
+  ir::SourceLoc start = field.value_loc;
+  if (is_quoted(value) && start.line > 0) ++start.column;  // past the opening quote
+  const std::string prefix = context_.empty() ? what(field) : context_ + ": " + what(field);
+  return parse_expression(value.Scalar(), file_, start, prefix);
+}
+
+std::array<ir::Expression, 2> MapView::expression_pair(const Field& field) const {
+  const YAML::Node& value = field.value;
+  if (!value.IsSequence() || value.size() != 2) {
+    fail(field.value_loc, prefixed(what(field) + ": expected a list of 2 values [x, y], got " +
+                                   describe(value)));
+  }
+  std::array<ir::Expression, 2> result;
+  for (std::size_t i = 0; i < 2; ++i) {
+    Field component{field.key + "[" + std::to_string(i) + "]", field.key_node, value[i],
+                    field.key_loc, location_of(value[i])};
+    if (component.value_loc.line == 0) component.value_loc = field.value_loc;
+    result[i] = expression(component);
   }
   return result;
 }

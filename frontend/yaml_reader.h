@@ -7,11 +7,13 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <initializer_list>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
+#include "ir/expression.h"
 #include "ir/model.h"
 #include "frontend/parse_model.h"
 
@@ -69,6 +71,13 @@ class MapView {
   long long whole_number(const Field& field) const;
   ir::Vec2 vec2(const Field& field) const;
   std::string text(const Field& field) const;  // any scalar
+  /// true / false.
+  bool boolean(const Field& field) const;
+  /// A number, or a string holding an expression in t
+  /// (frontend/expression_parser.h), located in messages.
+  ir::Expression expression(const Field& field) const;
+  /// [x, y], each a number or an expression in t.
+  std::array<ir::Expression, 2> expression_pair(const Field& field) const;
   /// A name that may reach generated C++: identifier, not a keyword, at most
   /// `max_length` characters.
   std::string identifier(const Field& field, std::size_t max_length) const;

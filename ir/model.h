@@ -8,9 +8,11 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "ir/expression.h"
 #include "ir/source_loc.h"
 
 namespace mbfe::ir {
@@ -23,11 +25,14 @@ enum class JointType { kRevolute, kPrismatic };
 /// Revolute: body frame = parent frame translated to `at`, rotated CCW by q.
 /// Prismatic: body frame = parent frame translated to `at + q * axis`, not
 /// rotated (`axis` is stored normalised, in the parent frame).
+/// A driven joint has a `motion`: q = motion(t), no longer an unknown.
 struct Joint {
   JointType type = JointType::kRevolute;
   Vec2 at{0.0, 0.0};    // m, parent frame
   Vec2 axis{1.0, 0.0};  // unit vector, parent frame (prismatic only)
+  std::optional<Expression> motion;  // m or rad as a function of t
   SourceLoc loc;
+  SourceLoc motion_loc;
 };
 
 struct NamedPoint {
@@ -51,15 +56,17 @@ struct Body {
 enum class LoadType { kForce, kTorque, kSpringDamper };
 
 /// A load on the rigid part. Force: ground-frame force at a named point (or at
-/// the body-frame origin when no point is given). Torque: on the body.
+/// the body-frame origin when no point is given). Torque: on the body. Both
+/// are expressions in t, zero outside `window`.
 /// SpringDamper: Q_i += -stiffness (q_i - rest) - damping qd_i on the body's
 /// own joint coordinate.
 struct Load {
   LoadType type = LoadType::kForce;
   int body = -1;        // index into Model::bodies
   int point = -1;       // index into Body::points; -1 = body-frame origin
-  Vec2 force{0.0, 0.0}; // N, ground frame
-  double torque = 0.0;  // N m
+  std::array<Expression, 2> force;  // N, ground frame
+  Expression torque;    // N m
+  TimeWindow window;
   double stiffness = 0.0;  // N/m or N m/rad
   double damping = 0.0;    // N s/m or N m s/rad
   double rest = 0.0;       // m or rad
@@ -75,11 +82,24 @@ struct Support {
   SourceLoc loc;
 };
 
-/// Transverse point force on a beam, applied from t = 0.
+/// Transverse point force on a beam at a node; an expression in t, zero
+/// outside `window`.
 struct BeamPointLoad {
   double at = 0.0;     // m along the beam
-  double value = 0.0;  // N, positive to the left of the beam axis
+  Expression value;    // N, positive to the left of the beam axis
   int node = -1;       // resolved node index
+  TimeWindow window;
+  SourceLoc loc;
+};
+
+/// A transverse force travelling along a beam: `value` (an expression in t)
+/// at s = start + speed (t - t0), through the element's shape functions
+/// (consistent nodal loads), while s is in [0, L].
+struct BeamMovingLoad {
+  Expression value;    // N, positive to the left of the beam axis
+  double speed = 0.0;  // m/s, != 0
+  double start = 0.0;  // m, position at t = t0
+  double t0 = 0.0;     // s
   SourceLoc loc;
 };
 
@@ -114,14 +134,17 @@ struct Beam {
   double rayleigh_alpha = 0.0;  // 1/s
   double rayleigh_beta = 0.0;   // s
   std::vector<BeamPointLoad> loads;
+  std::vector<BeamMovingLoad> moving_loads;
   Adjustment adjustment;
   MassLumping mass = MassLumping::kConsistent;
   SourceLoc loc;
 };
 
-enum class ContactType { kPin, kSliderPin };
+enum class ContactType { kPin, kSliderPin, kSliderSpring };
 
-/// A body vertex pinned to, or sliding along, a beam's neutral axis.
+/// A body vertex pinned to, or sliding along, a beam's neutral axis: pin and
+/// slider_pin are constraints (docs/contacts.md); slider_spring is a penalty
+/// force N = k delta + c delta' with delta = w(s) - y_P, no constraint.
 struct Contact {
   std::string name;
   ContactType type = ContactType::kPin;
@@ -129,12 +152,18 @@ struct Contact {
   int point = -1;  // index into Body::points
   int beam = -1;   // index into Model::beams
   double at = 0.0; // m along the beam (pin only)
+  double stiffness = 0.0;  // N/m (slider_spring)
+  double damping = 0.0;    // N s/m (slider_spring)
+  bool unilateral = false; // slider_spring: compression only (lift-off)
   SourceLoc loc;
+  bool is_constraint() const { return type != ContactType::kSliderSpring; }
 };
 
 struct Initial {
   std::vector<double> q;   // one per body, model order (missing = 0)
   std::vector<double> qd;  // one per body
+  bool static_start = false;  // `static: true`: static equilibrium at t = 0
+  SourceLoc loc;
 };
 
 struct Simulation {

@@ -201,6 +201,9 @@ const mbfe_model_v1 kModel = {
     0,
     nullptr,
     dynamics,
+    0,
+    nullptr,
+    nullptr,
 };
 
 }  // namespace

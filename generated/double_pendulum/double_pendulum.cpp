@@ -193,6 +193,9 @@ const mbfe_model_v1 kModel = {
     0,
     nullptr,
     dynamics,
+    0,
+    nullptr,
+    nullptr,
 };
 
 }  // namespace

@@ -342,6 +342,9 @@ const mbfe_model_v1 kModel = {
     1,
     kContacts,
     dynamics,
+    0,
+    nullptr,
+    nullptr,
 };
 
 }  // namespace

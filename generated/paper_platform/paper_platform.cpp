@@ -475,6 +475,9 @@ const mbfe_model_v1 kModel = {
     2,
     kContacts,
     dynamics,
+    0,
+    nullptr,
+    nullptr,
 };
 
 }  // namespace

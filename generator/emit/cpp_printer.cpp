@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "generator/symbolic/time_functions.h"
 #include "ir/shortest_decimal.h"
 
 namespace mbfe::gen {
@@ -81,6 +82,9 @@ std::string CppPrinter::print(const ex& e) const {
     static const std::map<std::string, std::string> kCalls = {
         {"sin", "std::sin"}, {"cos", "std::cos"}, {"tan", "std::tan"},
         {"exp", "std::exp"}, {"log", "std::log"}, {"abs", "std::abs"}};
+    std::vector<std::string> args;
+    for (std::size_t i = 0; i < e.nops(); ++i) args.push_back(print(e.op(i)));
+    if (std::string text = print_time_function(name, args); !text.empty()) return text;
     const auto it = kCalls.find(name);
     if (it == kCalls.end()) throw std::logic_error("unsupported function in generated code: " + name);
     std::string text = it->second + "(";

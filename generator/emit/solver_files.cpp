@@ -65,7 +65,7 @@ std::string solver_source(const ir::Model& model, const GeneratedSolver& solver,
     for (std::size_t i = 0; i < parent.size(); ++i) source << (i ? ", " : "") << parent[i];
     source << "};\n";
   }
-  source << parts.kernels << parts.points << parts.contacts
+  source << parts.kernels << parts.points << parts.contacts << parts.motion
          << "\n// Ground-frame position of point `point` of body `body` (indices in model order).\n"
          << "void point_position(const double* q, int body, int point, double* xy) {\n";
   for (const SolverParts::PointFunction& pf : parts.point_functions)
@@ -83,6 +83,11 @@ std::string solver_source(const ir::Model& model, const GeneratedSolver& solver,
              << c.rows << ", " << c.position << ", " << c.phi << ", " << c.jacobians << ", " << c.gamma << "},\n";
     source << "};\n\n";
   }
+  if (!parts.driven.empty()) {
+    source << "const int kDrivenCoordinates[] = {";
+    for (std::size_t i = 0; i < parts.driven.size(); ++i) source << (i ? ", " : "") << parts.driven[i];
+    source << "};\n\n";
+  }
   source << "const mbfe_model_v1 kModel = {\n"
          << "    MBFE_MODEL_ABI_VERSION,\n"
          << "    \"" << name << "\",\n"
@@ -90,7 +95,9 @@ std::string solver_source(const ir::Model& model, const GeneratedSolver& solver,
          << "    \"" << generator_version() << "\",\n"
          << "    kNumCoordinates,\n    kCoordinateNames,\n    mass_matrix,\n    inertial_forces,\n"
          << "    generalized_forces,\n    point_position,\n    " << contacts.size() << ",\n    "
-         << (contacts.empty() ? "nullptr" : "kContacts") << ",\n    dynamics,\n};\n\n"
+         << (contacts.empty() ? "nullptr" : "kContacts") << ",\n    dynamics,\n    " << parts.driven.size()
+         << ",\n    " << (parts.driven.empty() ? "nullptr,\n    nullptr" : "kDrivenCoordinates,\n    motion")
+         << ",\n};\n\n"
          << "}  // namespace\n}  // namespace " << name << "\n}  // namespace mbfe_generated\n\n"
          << "extern \"C\" const mbfe_model_v1* " << entry << "(void) { return &" << ns << "::kModel; }\n\n"
          << "#ifdef MBFE_SHARED_ENTRY  // defined when compiled into a run-time loaded library\n"

@@ -67,7 +67,7 @@ std::vector<ContactKernels> derive_contacts(const ir::Model& model, const Contac
     const ex x_p = ca * dx + sa * dy;
     const ex y_p = -sa * dx + ca * dy;
 
-    const bool slider = contact.type == ir::ContactType::kSliderPin;
+    const bool slider = contact.type != ir::ContactType::kPin;
     const ex s = slider ? x_p : ex(exact(contact.at));
     const std::vector<ex> n = hermite((s - sym.s0) / sym.le, sym.le);
     ex w = 0;
@@ -76,7 +76,7 @@ std::vector<ContactKernels> derive_contacts(const ir::Model& model, const Contac
 
     ContactKernels k;
     k.name = contact.name;
-    k.type = slider ? 1 : 0;
+    k.type = static_cast<int>(contact.type);  // the ABI's numbering: pin 0, slider_pin 1, slider_spring 2
     k.beam = contact.beam;
     k.at = contact.at;
     k.rows = static_cast<int>(phi.size());

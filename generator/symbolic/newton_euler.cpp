@@ -1,12 +1,15 @@
 #include "generator/symbolic/newton_euler.h"
 
+#include "generator/symbolic/time_functions.h"
+
 namespace mbfe::gen {
 
 using GiNaC::ex;
 
 SubtreeForces newton_euler_pass(const ir::Model& model, const std::vector<BodyKinematics>& kin,
                                 const std::vector<std::vector<int>>& children, const std::vector<GiNaC::symbol>& q,
-                                const std::vector<GiNaC::symbol>& qd, CodeList& code) {
+                                const std::vector<GiNaC::symbol>& qd, const GiNaC::symbol& t,
+                                CodeList& code) {
   const int n = static_cast<int>(model.bodies.size());
   // ---- Backward pass (eq (5)): bias forces F and applied forces Q. ----
   // f: net force the subtree needs (inertial) or receives (applied);
@@ -32,13 +35,14 @@ SubtreeForces newton_euler_pass(const ir::Model& model, const std::vector<BodyKi
         const ir::Vec2 local = load.point >= 0 ? model.bodies[b].points[load.point].position
                                                   : ir::Vec2{0.0, 0.0};
         const Vec2x arm = rotate(kin[b].cos_angle, kin[b].sin_angle, constant(local));
-        const Vec2x force = constant(load.force);
+        const ex on = window_factor(load.window, t);
+        const Vec2x force{on * to_ginac(load.force[0], t), on * to_ginac(load.force[1], t)};
         point_force[b] = add(point_force[b], force);
         point_moment[b] = point_moment[b] + cross(arm, force);
         break;
       }
       case ir::LoadType::kTorque:
-        torque_load[b] = torque_load[b] + exact(load.torque);
+        torque_load[b] = torque_load[b] + window_factor(load.window, t) * to_ginac(load.torque, t);
         break;
       case ir::LoadType::kSpringDamper:
         spring[b] = spring[b] - exact(load.stiffness) * (q[b] - exact(load.rest)) -

@@ -26,6 +26,7 @@ struct SubtreeForces {
 
 SubtreeForces newton_euler_pass(const ir::Model& model, const std::vector<BodyKinematics>& kin,
                                 const std::vector<std::vector<int>>& children, const std::vector<GiNaC::symbol>& q,
-                                const std::vector<GiNaC::symbol>& qd, CodeList& code);
+                                const std::vector<GiNaC::symbol>& qd, const GiNaC::symbol& t,
+                                CodeList& code);
 
 }  // namespace mbfe::gen

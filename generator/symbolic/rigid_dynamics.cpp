@@ -35,7 +35,7 @@ void derive_rigid_dynamics(const ir::Model& model, RigidDerivation& d) {
     d.sin_angle.push_back(kin[i].sin_angle);
   }
   const std::vector<std::vector<int>> children = children_of(model);
-  const SubtreeForces forces = newton_euler_pass(model, kin, children, d.q, d.qd, code);
+  const SubtreeForces forces = newton_euler_pass(model, kin, children, d.q, d.qd, d.t, code);
   const CompositeBodies composite = composite_bodies(model, kin, children, code);
 
   // The kernels.

@@ -16,7 +16,7 @@
 extern "C" {
 #endif
 
-#define MBFE_MODEL_ABI_VERSION 1
+#define MBFE_MODEL_ABI_VERSION 2
 
 /* Contact kernels, one set per contact, evaluated on one beam element.
  * Inputs: q, qd (rigid coordinates); the element's 4 local beam DOFs
@@ -24,7 +24,8 @@ extern "C" {
  * length le. Outputs written for `rows` constraint rows (2 pin, 1 slider). */
 typedef struct mbfe_contact_kernels_v1 {
   const char* name;
-  int type; /* 0 = pin, 1 = slider_pin */
+  int type; /* 0 = pin, 1 = slider_pin, 2 = slider_spring (a penalty force,
+              not a constraint: Phi = delta = w(s) - y_P, the penetration) */
   int beam; /* index of the beam in model order */
   double at; /* pin position along the beam (m); unused for sliders */
   int rows;
@@ -61,6 +62,11 @@ typedef struct mbfe_model_v1 {
    * at every step); may be NULL in hand-written models, then call the three
    * kernels above. */
   void (*dynamics)(const double* q, const double* qd, double t, double* M, double* F, double* Q);
+  /* Driven joints (`motion:`): their coordinates (model order) and q, q', q''
+   * of each at time t, in that order. 0 / NULL / NULL when none. */
+  int num_driven;
+  const int* driven_coordinates;
+  void (*motion)(double t, double* q, double* qd, double* qdd);
 } mbfe_model_v1;
 
 typedef const mbfe_model_v1* (*mbfe_model_entry_fn)(void);

@@ -80,13 +80,26 @@ std::unique_ptr<ModalBeamOde> modal_beam_ode(const BeamModel& beams, bool adjust
   }
   Eigen::SparseMatrix<double> M(n, n);
   M.setFromTriplets(trip.begin(), trip.end());
-  return std::make_unique<ModalBeamOde>(basis, modes, M, P);
+  auto ode = std::make_unique<ModalBeamOde>(basis, modes, M, P);
+  if (std::any_of(beams.beams.begin(), beams.beams.end(),
+                  [](const BeamPart& b) { return b.system.has_time_loads(); })) {
+    ode->set_time_loads([&beams, scratch = std::vector<NodalForce>()](double t, std::vector<NodalForce>& out) mutable {
+      out.clear();
+      for (const BeamPart& b : beams.beams) {
+        if (!b.system.has_time_loads()) continue;
+        time_dependent_loads(b.system, t, scratch);
+        for (const NodalForce& f : scratch) out.push_back({b.offset + f.index, f.value});
+      }
+    });
+  }
+  return ode;
 }
 
-Eigen::VectorXd modal_static_state(const BeamModel& beams, bool adjusted, const ModalBeamOde& ode) {
+Eigen::VectorXd modal_static_state(const BeamModel& beams, bool adjusted, ModalBeamOde& ode, double t) {
   const int n = beams.dof;
   Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
-  const Eigen::VectorXd& p = ode.modal_load();
+  Eigen::VectorXd p;
+  ode.modal_load_at(t, p);
   int j = 0;
   for (const BeamPart& b : beams.beams)
     for (const ModalDynamics& m : adjusted ? b.adjusted.modes : b.original) {

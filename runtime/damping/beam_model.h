@@ -61,8 +61,10 @@ BeamModel analyse_beams(const ir::Model& model, const BeamAnalysisOptions& optio
 /// @throws std::invalid_argument if some beam has a partial basis.
 std::unique_ptr<ModalBeamOde> modal_beam_ode(const BeamModel& beams, bool adjusted);
 
-/// The static state [q_s; 0] in the modal coordinates of modal_beam_ode
-/// (eta_j = p_j / k_j): the scale a divergence bound is set against.
-Eigen::VectorXd modal_static_state(const BeamModel& beams, bool adjusted, const ModalBeamOde& ode);
+/// The static state [q_s; 0] under the load at time t, in the modal
+/// coordinates of modal_beam_ode (eta_j = p_j(t) / k_j): a static start, and
+/// the scale a divergence bound is set against. `beams` must outlive `ode`
+/// (its time loads read the beams).
+Eigen::VectorXd modal_static_state(const BeamModel& beams, bool adjusted, ModalBeamOde& ode, double t = 0.0);
 
 }  // namespace mbfe::runtime

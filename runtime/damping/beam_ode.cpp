@@ -25,10 +25,23 @@ ModalBeamOde::ModalBeamOde(const ModalBasis& basis, const std::vector<ModalDynam
   p_ = phi_.transpose() * P;
 }
 
-void ModalBeamOde::rhs(double, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
+void ModalBeamOde::modal_load_at(double t, Eigen::VectorXd& out) {
+  out = p_;
+  if (!time_loads_) return;
+  time_loads_(t, forces_);
+  // A few nodal forces: Phi^T f is a few rows of Phi, not a product with all of it.
+  for (const NodalForce& f : forces_) out.noalias() += f.value * phi_.row(f.index).transpose();
+}
+
+void ModalBeamOde::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
   const Eigen::Index n = k_.size();
   ydot.resize(2 * n);
   ydot.head(n) = y.tail(n);
+  if (time_loads_) {
+    modal_load_at(t, pt_);
+    ydot.tail(n) = pt_ - c_.cwiseProduct(y.tail(n)) - k_.cwiseProduct(y.head(n));
+    return;
+  }
   ydot.tail(n) = p_ - c_.cwiseProduct(y.tail(n)) - k_.cwiseProduct(y.head(n));
 }
 
@@ -42,7 +55,7 @@ void ModalBeamOde::solve_shifted(double, const Eigen::VectorXd&, double c, const
   x.head(n) = b.head(n) + c * x.tail(n);
 }
 
-void ModalBeamOde::load(double, Eigen::VectorXd& out) { out = p_; }
+void ModalBeamOde::load(double t, Eigen::VectorXd& out) { modal_load_at(t, out); }
 
 void ModalBeamOde::solve_combination(double a, double b, double c, const Eigen::VectorXd& r, Eigen::VectorXd& x) {
   x = r.array() / (a + b * c_.array() + c * k_.array());

@@ -11,23 +11,29 @@
 //    a sparse part needs it; implicit methods factorise a M + b C + c K once per
 //    step size (Woodbury for the low-rank part).
 //
-// The load P is constant in time (applied from t = 0, as every beam load of
-// the model format).
+// The load is P (constant) plus, when set, a time-dependent part given as
+// sparse nodal forces at t (runtime/fem/beam_loads.h).
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/LU>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <memory>
 #include <vector>
 
 #include "runtime/damping/modal_adjustment.h"
+#include "runtime/fem/beam_loads.h"
 #include "runtime/integrators/integrator.h"
 #include "runtime/modal/modal_basis.h"
 #include "runtime/modal/state_spectrum.h"
 
 namespace mbfe::runtime {
+
+/// The time-dependent part of a load at t: clears `out`, appends nodal forces
+/// (indices into the system's nodal DOFs).
+using TimeLoadFn = std::function<void(double t, std::vector<NodalForce>& out)>;
 
 class ModalBeamOde final : public LinearSecondOrderSystem {
  public:
@@ -54,10 +60,17 @@ class ModalBeamOde final : public LinearSecondOrderSystem {
   void positions(const Eigen::VectorXd& y, Eigen::VectorXd& q) const;
   const Eigen::MatrixXd& phi() const { return phi_; }
   const Eigen::VectorXd& modal_load() const { return p_; }  // Phi^T P (N)
+  /// Adds a time-dependent load (empty function: none).
+  void set_time_loads(TimeLoadFn loads) { time_loads_ = std::move(loads); }
+  /// Phi^T (P + P_t(t)) (N).
+  void modal_load_at(double t, Eigen::VectorXd& out);
 
  private:
   Eigen::MatrixXd phi_, mphi_;  // Phi, M Phi
   Eigen::VectorXd k_, c_, p_;   // per mode; p = Phi^T P
+  TimeLoadFn time_loads_;
+  std::vector<NodalForce> forces_;  // scratch
+  Eigen::VectorXd pt_;              // scratch
 };
 
 class NodalBeamOde final : public LinearSecondOrderSystem {

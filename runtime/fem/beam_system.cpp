@@ -105,14 +105,20 @@ BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity) {
       }
     }
   }
+  std::vector<TimedNodalLoad> timed_full;  // free_index holds the full DOF until the supports are known
   for (const ir::BeamPointLoad& load : beam.loads) {
     const int node = load.node >= 0 ? load.node : node_at(beam, load.at, "point load");
     if (node < 0 || node >= nn) {
       throw std::invalid_argument(beam_error(beam, "point load node " + std::to_string(node) +
                                                        " is outside 0.." + std::to_string(ne)));
     }
-    p_full[nd * node] += load.value;
+    if (load.value.is_constant() && load.window.always()) {
+      p_full[nd * node] += load.value.evaluate(0.0);
+    } else {
+      timed_full.push_back({nd * node, load.value, load.window});
+    }
   }
+  sys.moving_loads = beam.moving_loads;
 
   sys.K.resize(n, n);
   sys.M.resize(n, n);
@@ -142,6 +148,10 @@ BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity) {
   }
   sys.P.resize(n);
   for (int k = 0; k < n; ++k) sys.P[k] = p_full[sys.free_dof[k]];
+  for (TimedNodalLoad& load : timed_full) {
+    load.free_index = sys.full_to_free[load.free_index];
+    if (load.free_index >= 0) sys.timed_loads.push_back(std::move(load));  // else: the support carries it
+  }
   return sys;
 }
 

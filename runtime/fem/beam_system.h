@@ -14,6 +14,13 @@
 
 namespace mbfe::runtime {
 
+/// A point load that changes with time, on free DOF `free_index`.
+struct TimedNodalLoad {
+  int free_index = -1;
+  ir::Expression value;  // N
+  ir::TimeWindow window;
+};
+
 struct BeamSystem {
   std::string name;
   int num_nodes = 0;                 // elements + 1
@@ -21,7 +28,12 @@ struct BeamSystem {
   Eigen::SparseMatrix<double> M;     // kg (consistent or lumped), n x n
   Eigen::SparseMatrix<double> K;     // N/m
   Eigen::SparseMatrix<double> C;     // alpha M + beta K
-  Eigen::VectorXd P;                 // N: gravity (own weight) + point loads
+  Eigen::VectorXd P;                 // N: gravity (own weight) + constant point loads
+  /// Loads that change with time (runtime/fem/beam_loads.h adds them up at t):
+  /// point loads with an expression in t or a time window, moving loads.
+  std::vector<TimedNodalLoad> timed_loads;
+  std::vector<ir::BeamMovingLoad> moving_loads;
+  bool has_time_loads() const { return !timed_loads.empty() || !moving_loads.empty(); }
   /// free_dof[k] = index into the full 2 * num_nodes vector of free DOF k.
   std::vector<int> free_dof;
   /// full_to_free[i] = free index of full DOF i, or -1 if fixed by a support.

@@ -54,7 +54,8 @@ SimulationReport run_beams(const AssembledModel& model, const SimulationRequest&
 
   SimulationOptions options = driver_options(request);
   options.reference_norm = y_static.norm();
-  const Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * n);  // beams start at rest, undeformed
+  // Beams start at rest, undeformed, or in static equilibrium under the loads at t = 0.
+  const Eigen::VectorXd y0 = request.static_start.value_or(model.ir().initial.static_start) ? y_static : Eigen::VectorXd::Zero(2 * n);
   SimulationReport report;
   report.variant = adjusted ? "adjusted damping" : "original damping";
   try {

@@ -60,6 +60,12 @@ struct SimulationRequest {
   bool state_in_rows = false;
   /// Ctrl-C stops the run after the current step (status kInterrupted).
   bool handle_sigint = true;
+  /// Start from the static equilibrium at t = 0 of everything not driven;
+  /// absent = as the model's `initial: {static: ...}` says.
+  std::optional<bool> static_start;
+  /// An initial state that violates the contacts is an error (InvalidInput)
+  /// instead of being projected onto them with a notice.
+  bool strict = false;
 };
 
 /// The output columns, known before the first row, with their units
@@ -86,6 +92,10 @@ class SimulationObserver {
   virtual void begin(const OutputLayout& /*layout*/) {}
   /// Called for every output row, from the simulating thread.
   virtual void row(const OutputRow& row) = 0;
+  /// Something the user should know that is not an error, in one or more
+  /// lines: the initial state was projected onto the contacts (which
+  /// coordinates moved, by how much). The tool prints it on stderr.
+  virtual void notice(const std::string& /*text*/) {}
 };
 
 struct SimulationReport {

@@ -124,10 +124,11 @@ loads:
   ASSERT_EQ(model.loads.size(), 4u);
   EXPECT_EQ(model.loads[0].type, LoadType::kForce);
   EXPECT_EQ(model.loads[0].point, 1);
-  EXPECT_EQ(model.loads[0].force, (Vec2{0.0, -10.0}));
+  EXPECT_EQ(model.loads[0].force[0].evaluate(0.0), 0.0);
+  EXPECT_EQ(model.loads[0].force[1].evaluate(0.0), -10.0);
   EXPECT_EQ(model.loads[1].point, -1);  // the body-frame origin
   EXPECT_EQ(model.loads[2].type, LoadType::kTorque);
-  EXPECT_EQ(model.loads[2].torque, 0.5);
+  EXPECT_EQ(model.loads[2].torque.evaluate(0.0), 0.5);
   EXPECT_EQ(model.loads[3].type, LoadType::kSpringDamper);
   EXPECT_EQ(model.loads[3].body, 0);
   EXPECT_EQ(model.loads[3].stiffness, 10.0);
@@ -184,7 +185,7 @@ TEST(ParseModel, BeamsSectionsNodesAndAdjustment) {
   EXPECT_EQ(beam1.supports[2].node, 10);
   ASSERT_EQ(beam1.loads.size(), 1u);
   EXPECT_EQ(beam1.loads[0].node, 7);
-  EXPECT_EQ(beam1.loads[0].value, -10.0);
+  EXPECT_EQ(beam1.loads[0].value.evaluate(0.0), -10.0);
   EXPECT_EQ(beam1.rayleigh_alpha, 3.0e-3);
   EXPECT_EQ(beam1.rayleigh_beta, 1.5e-4);
   EXPECT_TRUE(beam1.adjustment.present);

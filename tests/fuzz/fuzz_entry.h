@@ -41,6 +41,14 @@ inline void require(bool ok, const std::string& what) {
 
 inline bool finite2(const ir::Vec2& v) { return std::isfinite(v[0]) && std::isfinite(v[1]); }
 
+/// Every number written in the expression is finite (its value at some t may not be).
+inline bool finite_numbers(const ir::Expression& e) {
+  if (e.kind == ir::Expression::Kind::kNumber && !std::isfinite(e.value)) return false;
+  for (const auto& a : e.args)
+    if (!finite_numbers(a)) return false;
+  return true;
+}
+
 inline void check_invariants(const ir::Model& m) {
   using ir::is_identifier;
   require(is_identifier(m.name), "model name '" + m.name + "' is not an identifier");
@@ -62,7 +70,8 @@ inline void check_invariants(const ir::Model& m) {
     require(l.body >= 0 && l.body < nb, "load body index out of range");
     require(l.point >= -1 && l.point < static_cast<int>(m.bodies[l.body].points.size()),
             "load point index out of range");
-    require(finite2(l.force) && std::isfinite(l.torque) && std::isfinite(l.stiffness) &&
+    require(finite_numbers(l.force[0]) && finite_numbers(l.force[1]) && finite_numbers(l.torque) &&
+                std::isfinite(l.stiffness) &&
                 std::isfinite(l.damping) && std::isfinite(l.rest),
             "load value not finite");
   }
@@ -73,8 +82,12 @@ inline void check_invariants(const ir::Model& m) {
     for (const auto& s : beam.supports)
       require(s.node >= 0 && s.node <= beam.elements, "beam '" + beam.name + "': support node");
     for (const auto& l : beam.loads)
-      require(l.node >= 0 && l.node <= beam.elements && std::isfinite(l.value),
+      require(l.node >= 0 && l.node <= beam.elements && finite_numbers(l.value),
               "beam '" + beam.name + "': load node");
+    for (const auto& l : beam.moving_loads)
+      require(finite_numbers(l.value) && std::isfinite(l.speed) && l.speed != 0.0 && std::isfinite(l.start) &&
+                  std::isfinite(l.t0),
+              "beam '" + beam.name + "': moving load");
   }
   const int nbeams = static_cast<int>(m.beams.size());
   for (const ir::Contact& c : m.contacts) {

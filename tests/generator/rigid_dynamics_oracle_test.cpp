@@ -145,9 +145,9 @@ TEST(GeneratedRigidDynamics, MatchesNumericalOracleOnRandomTrees) {
         const auto& b = m.bodies[load.body];
         if (load.type == ir::LoadType::kForce)
           Q_oracle += point_jacobian(m, q, load.body, b.points[load.point].position).transpose() *
-                      Eigen::Vector2d(load.force[0], load.force[1]);
+                      Eigen::Vector2d(load.force[0].evaluate(0.0), load.force[1].evaluate(0.0));
         else if (load.type == ir::LoadType::kTorque)
-          Q_oracle += angle_jacobian(m, load.body).transpose() * load.torque;
+          Q_oracle += angle_jacobian(m, load.body).transpose() * load.torque.evaluate(0.0);
         else
           Q_oracle[load.body] += -load.stiffness * (q[load.body] - load.rest) - load.damping * qd[load.body];
       }

@@ -26,7 +26,7 @@ ir::Beam small_beam() {
   b.supports = {{0.0, ir::SupportType::kPinned, 0, {}}, {1.0, ir::SupportType::kPinned, 8, {}}};
   b.rayleigh_alpha = 3e-3;
   b.rayleigh_beta = 1.5e-4;
-  b.loads = {{0.5, -10.0, 4, {}}};
+  b.loads = {{0.5, ir::Expression::number(-10.0), 4, {}, {}}};
   return b;
 }
 

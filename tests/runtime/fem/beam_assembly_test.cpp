@@ -45,7 +45,7 @@ TEST(BeamAssembly, PinnedBeamDropsTheEndDeflectionsInContractOrder) {
 
 TEST(BeamAssembly, MidspanPointLoadMatchesClosedForm) {
   ir::Beam b = test::paper_beam();
-  b.loads = {{0.5, -10.0, -1, {}}};
+  b.loads = {{0.5, ir::Expression::number(-10.0), -1, {}, {}}};
   const BeamSystem s = assemble_beam(b, {0.0, 0.0});
   const Eigen::VectorXd q = solve_static(s);
   const double expected = -10.0 / (48.0 * bending_stiffness(b));  // P L^3 / (48 EI)
@@ -58,7 +58,7 @@ TEST(BeamAssembly, MidspanPointLoadMatchesClosedForm) {
 
 TEST(BeamAssembly, CantileverTipLoadMatchesClosedForm) {
   ir::Beam b = test::cantilever_beam(20);
-  b.loads = {{1.0, 3.0, -1, {}}};
+  b.loads = {{1.0, ir::Expression::number(3.0), -1, {}, {}}};
   const BeamSystem s = assemble_beam(b, {0.0, 0.0});
   EXPECT_EQ(s.M.rows(), 40);  // clamped: w and w' at node 0 removed
   const Eigen::VectorXd q = solve_static(s);
@@ -104,7 +104,7 @@ TEST(BeamAssembly, ConsistentNodalMomentsAreExactForUniformLoad) {
 
 TEST(BeamAssembly, RejectsSupportsAndLoadsOffTheNodes) {
   ir::Beam b = test::paper_beam();
-  b.loads = {{0.51, -10.0, -1, {}}};
+  b.loads = {{0.51, ir::Expression::number(-10.0), -1, {}, {}}};
   EXPECT_THROW(assemble_beam(b, {0.0, 0.0}), std::invalid_argument);
   b = test::paper_beam();
   b.supports.push_back({1.5, ir::SupportType::kPinned, -1, {}});

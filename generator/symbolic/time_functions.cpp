@@ -1,0 +1,110 @@
+#include "generator/symbolic/time_functions.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "generator/symbolic/code_list.h"
+
+// GiNaC's function macros declare at namespace scope.
+namespace mbfe::gen {
+
+DECLARE_FUNCTION_1P(mbfe_step)
+DECLARE_FUNCTION_1P(mbfe_sign)
+DECLARE_FUNCTION_1P(mbfe_fabs)
+DECLARE_FUNCTION_2P(mbfe_fmin)
+DECLARE_FUNCTION_2P(mbfe_fmax)
+
+namespace {
+
+using GiNaC::ex;
+
+bool is_number(const ex& x) { return GiNaC::is_exactly_a<GiNaC::numeric>(x) && GiNaC::ex_to<GiNaC::numeric>(x).is_real(); }
+GiNaC::numeric num(const ex& x) { return GiNaC::ex_to<GiNaC::numeric>(x); }
+
+ex step_eval(const ex& x) {
+  if (is_number(x)) return num(x).is_negative() ? 0 : 1;
+  return mbfe_step(x).hold();
+}
+ex step_deriv(const ex&, unsigned) { return 0; }
+
+ex sign_eval(const ex& x) {
+  if (is_number(x)) return num(x).is_zero() ? 0 : (num(x).is_negative() ? -1 : 1);
+  return mbfe_sign(x).hold();
+}
+ex sign_deriv(const ex&, unsigned) { return 0; }
+
+ex fabs_eval(const ex& x) {
+  if (is_number(x)) return GiNaC::abs(num(x));
+  return mbfe_fabs(x).hold();
+}
+ex fabs_deriv(const ex& x, unsigned) { return mbfe_sign(x); }
+
+ex fmin_eval(const ex& a, const ex& b) {
+  if (is_number(a) && is_number(b)) return num(a) < num(b) ? a : b;
+  return mbfe_fmin(a, b).hold();
+}
+// d min(a, b) / da = 1 where a <= b.
+ex fmin_deriv(const ex& a, const ex& b, unsigned p) {
+  return p == 0 ? mbfe_step(b - a) : 1 - mbfe_step(b - a);
+}
+
+ex fmax_eval(const ex& a, const ex& b) {
+  if (is_number(a) && is_number(b)) return num(a) < num(b) ? b : a;
+  return mbfe_fmax(a, b).hold();
+}
+ex fmax_deriv(const ex& a, const ex& b, unsigned p) {
+  return p == 0 ? mbfe_step(a - b) : 1 - mbfe_step(a - b);
+}
+
+}  // namespace
+
+REGISTER_FUNCTION(mbfe_step, eval_func(step_eval).derivative_func(step_deriv))
+REGISTER_FUNCTION(mbfe_sign, eval_func(sign_eval).derivative_func(sign_deriv))
+REGISTER_FUNCTION(mbfe_fabs, eval_func(fabs_eval).derivative_func(fabs_deriv))
+REGISTER_FUNCTION(mbfe_fmin, eval_func(fmin_eval).derivative_func(fmin_deriv))
+REGISTER_FUNCTION(mbfe_fmax, eval_func(fmax_eval).derivative_func(fmax_deriv))
+
+ex to_ginac(const ir::Expression& e, const GiNaC::symbol& t) {
+  using Kind = ir::Expression::Kind;
+  switch (e.kind) {
+    case Kind::kNumber: return exact(e.value);
+    case Kind::kTime: return t;
+    case Kind::kNegate: return -to_ginac(e.args[0], t);
+    case Kind::kAdd: return to_ginac(e.args[0], t) + to_ginac(e.args[1], t);
+    case Kind::kSubtract: return to_ginac(e.args[0], t) - to_ginac(e.args[1], t);
+    case Kind::kMultiply: return to_ginac(e.args[0], t) * to_ginac(e.args[1], t);
+    case Kind::kDivide: return to_ginac(e.args[0], t) / to_ginac(e.args[1], t);
+    case Kind::kPower: return GiNaC::pow(to_ginac(e.args[0], t), to_ginac(e.args[1], t));
+    case Kind::kCall: break;
+  }
+  const ex a = to_ginac(e.args[0], t);
+  if (e.function == "sin") return GiNaC::sin(a);
+  if (e.function == "cos") return GiNaC::cos(a);
+  if (e.function == "tan") return GiNaC::tan(a);
+  if (e.function == "exp") return GiNaC::exp(a);
+  if (e.function == "log") return GiNaC::log(a);
+  if (e.function == "sqrt") return GiNaC::sqrt(a);
+  if (e.function == "abs") return mbfe_fabs(a);
+  if (e.function == "step") return mbfe_step(a);
+  if (e.function == "min") return mbfe_fmin(a, to_ginac(e.args[1], t));
+  if (e.function == "max") return mbfe_fmax(a, to_ginac(e.args[1], t));
+  throw std::logic_error("to_ginac: unknown function " + e.function);
+}
+
+ex window_factor(const ir::TimeWindow& window, const GiNaC::symbol& t) {
+  ex factor = 1;
+  if (std::isfinite(window.start)) factor = factor * mbfe_step(t - exact(window.start));
+  if (std::isfinite(window.stop)) factor = factor * (1 - mbfe_step(t - exact(window.stop)));
+  return factor;
+}
+
+std::string print_time_function(const std::string& name, const std::vector<std::string>& args) {
+  if (name == "mbfe_step") return "(" + args[0] + " >= 0.0 ? 1.0 : 0.0)";
+  if (name == "mbfe_sign") return "((" + args[0] + " > 0.0) - (" + args[0] + " < 0.0))";
+  if (name == "mbfe_fabs") return "std::fabs(" + args[0] + ")";
+  if (name == "mbfe_fmin") return "std::fmin(" + args[0] + ", " + args[1] + ")";
+  if (name == "mbfe_fmax") return "std::fmax(" + args[0] + ", " + args[1] + ")";
+  return {};
+}
+
+}  // namespace mbfe::gen

@@ -1,0 +1,21 @@
+#include "runtime/fem/beam_loads.h"
+
+namespace mbfe::runtime {
+
+void time_dependent_loads(const BeamSystem& beam, double t, std::vector<NodalForce>& out) {
+  out.clear();
+  for (const TimedNodalLoad& load : beam.timed_loads) {
+    if (load.window.contains(t)) out.push_back({load.free_index, load.value.evaluate(t)});
+  }
+  for (const ir::BeamMovingLoad& load : beam.moving_loads) {
+    const double s = moving_load_position(load, t);
+    if (!(s >= 0.0 && s <= beam.length)) continue;  // not on the beam (yet, or any more)
+    const double value = load.value.evaluate(t);
+    const BeamPointWeights w = point_weights(beam, s);
+    for (int a = 0; a < 4; ++a) {
+      if (w.free_index[a] >= 0 && w.w[a] != 0.0) out.push_back({w.free_index[a], value * w.w[a]});
+    }
+  }
+}
+
+}  // namespace mbfe::runtime
