@@ -18,9 +18,11 @@ order); for beam models t and the beam coordinates (see mbfe modal --help) or
 the --probe columns; for coupled models (bodies, beams and contacts) t, the
 rigid coordinates, the beam coordinates (or the --probe columns), their rates
 (_dot), the contact forces lambda_<contact> (slider_pin) and
-lambda_<contact>_1/_2 (pin: along and across the beam), N, and phi_abs, the
-largest constraint residual |Phi| in m. Flags override the model's
-`simulation:` block.
+lambda_<contact>_1/_2 (pin: along and across the beam), N, phi_abs, the
+largest constraint residual |Phi| in m, force_<contact> of each slider_spring
+(N, compression positive) and <body>_drive, the force or torque a driven joint
+(joint.motion) exerts. Driven coordinates hold their motion's values. Flags
+override the model's `simulation:` block.
 
 Options:
   --integrator NAME  forward_euler, backward_euler, explicit_midpoint, trapezoid,
@@ -38,6 +40,11 @@ Options:
                      |Phi| closed by Newton at every step) or augmented
                      (multipliers; a cross-check, |Phi| drifts)
   --rho-inf R        generalized_alpha spectral radius at infinity (0..1)
+  --start static     start from the static equilibrium at t = 0 of everything
+                     not driven (as `initial: {static: true}`); --start given
+                     starts from `initial:` as written
+  --strict           an initial state that violates the contacts is an error
+                     (exit 2) instead of being projected onto them
   --quiet            no progress or cache messages on stderr
 
 Exit status: 0 done; 2 bad input; 3 the simulation diverged or failed part-way
@@ -46,6 +53,7 @@ Exit status: 0 done; 2 bad input; 3 the simulation diverged or failed part-way
 Examples:
   mbfe simulate models/double_pendulum.yaml --integrator rk4 --step 1e-3 --t-end 2 --out pendulum.csv
   mbfe simulate models/paper_platform.yaml --integrator forward_euler --step 1.4e-5 --t-end 1 --out platform.csv
+  mbfe simulate models/bridge_moving_mass.yaml --probe deck@10 --out crossing.csv
 )";
 
 std::vector<std::string> split_commas(const std::string& text) {
@@ -92,14 +100,26 @@ runtime::SimulationRequest request_of(const ParsedArgs& parsed, const ir::Model&
     throw UsageError("--formulation takes partitioned or augmented, got '" + formulation + "'");
   request.formulation = formulation == "augmented" ? runtime::CoupledFormulation::kAugmented
                                                    : runtime::CoupledFormulation::kPartitioned;
+  if (const auto start = parsed.value("start")) {
+    if (*start != "static" && *start != "given") throw UsageError("--start takes static or given, got '" + *start + "'");
+    request.static_start = *start == "static";
+  }
+  request.strict = parsed.has("strict");
   return request;
+}
+
+/// "mbfe: contact 'tyre': 2 lift-offs, 0.0123 s off contact" per slider_spring.
+void print_spring_tally(const runtime::SimulationReport& report) {
+  for (const runtime::SpringContactTally& c : report.springs)
+    std::cerr << "mbfe: contact '" << c.name << "': " << c.lift_offs << " lift-off" << (c.lift_offs == 1 ? "" : "s")
+              << ", " << c.time_off << " s off contact while over the beam\n";
 }
 
 }  // namespace
 
 int cmd_simulate(const Args& args) {
-  const ParsedArgs parsed(args, {"integrator", "step", "t-end", "out", "every", "adjust", "probe", "rho-inf", "formulation"},
-                          {"help", "quiet"});
+  const ParsedArgs parsed(args, {"integrator", "step", "t-end", "out", "every", "adjust", "probe", "rho-inf", "formulation", "start"},
+                          {"help", "quiet", "strict"});
   if (parsed.has("help")) {
     std::cout << kHelp;
     return 0;
@@ -126,11 +146,13 @@ int cmd_simulate(const Args& args) {
       std::cerr << "mbfe: " << model.ir().name << variant << ": " << run.steps << " " << run.integrator
                 << " steps of " << run.step << " s to t = " << run.t << " s in " << run.wall_seconds << " s; "
                 << csv.rows() << " rows written" << where << "\n";
+    print_spring_tally(report);
     return 0;
   }
   std::cerr << "mbfe simulate: " << report.message << (report.variant.empty() ? "" : "; " + report.variant) << "; "
             << csv.rows() << " rows written" << where
             << (run.status == runtime::SimulationStatus::kInterrupted ? "" : " up to there") << "\n";
+  print_spring_tally(report);
   return 3;
 }
 

@@ -2,6 +2,8 @@
 // the file, which is flushed every few rows and on every exit path.
 #pragma once
 
+#include <iostream>
+
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -39,6 +41,7 @@ class CsvObserver : public runtime::SimulationObserver {
   explicit CsvObserver(CsvOutput& out) : out_(out) {}
   void begin(const runtime::OutputLayout& layout) override { out_.header(layout.columns); }
   void row(const runtime::OutputRow& row) override { out_.row(row.values.data(), row.values.size()); }
+  void notice(const std::string& text) override { std::cerr << "mbfe: " << text << "\n"; }
 
  private:
   CsvOutput& out_;

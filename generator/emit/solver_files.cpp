@@ -80,7 +80,9 @@ std::string solver_source(const ir::Model& model, const GeneratedSolver& solver,
     source << "const mbfe_contact_kernels_v1 kContacts[] = {\n";
     for (const SolverParts::ContactEntry& c : contacts)
       source << "    {\"" << c.name << "\", " << c.type << ", " << c.beam << ", " << print_double(c.at) << ", "
-             << c.rows << ", " << c.position << ", " << c.phi << ", " << c.jacobians << ", " << c.gamma << "},\n";
+             << c.rows << ", " << c.position << ", " << c.phi << ", " << c.jacobians << ", " << c.gamma << ", "
+             << print_double(c.stiffness) << ", " << print_double(c.damping) << ", " << (c.unilateral ? 1 : 0)
+             << "},\n";
     source << "};\n\n";
   }
   if (!parts.driven.empty()) {

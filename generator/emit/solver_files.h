@@ -29,6 +29,8 @@ struct SolverParts {
     int type = 0, beam = 0, rows = 0;
     double at = 0.0;
     std::string position, phi, jacobians, gamma;  // function names
+    double stiffness = 0.0, damping = 0.0;  // slider_spring
+    bool unilateral = false;
   };
   std::vector<ContactEntry> contact_entries;
   std::string motion;               // the motion kernel; empty when no joint is driven

@@ -39,6 +39,11 @@ typedef struct mbfe_contact_kernels_v1 {
   /* gamma[rows] = -(dJ/dt) q' */
   void (*gamma)(const double* q, const double* qd, const double* qe, const double* qed,
                 double s0, double le, double* gamma);
+  /* slider_spring only: N = stiffness delta + damping delta' (N/m, N s/m);
+   * unilateral != 0: compression only (N = 0 when delta <= 0 or N < 0). */
+  double stiffness;
+  double damping;
+  int unilateral;
 } mbfe_contact_kernels_v1;
 
 typedef struct mbfe_model_v1 {

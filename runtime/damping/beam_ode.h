@@ -31,10 +31,6 @@
 
 namespace mbfe::runtime {
 
-/// The time-dependent part of a load at t: clears `out`, appends nodal forces
-/// (indices into the system's nodal DOFs).
-using TimeLoadFn = std::function<void(double t, std::vector<NodalForce>& out)>;
-
 class ModalBeamOde final : public LinearSecondOrderSystem {
  public:
   /// @param basis complete, mass-normalised (n modes). @param modes k_j, c_j

@@ -9,6 +9,7 @@
 // The constant part of the load stays in BeamSystem::P.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "runtime/fem/beam_system.h"
@@ -20,6 +21,10 @@ struct NodalForce {
   int index = -1;      // free DOF
   double value = 0.0;  // N or N m
 };
+
+/// The time-dependent part of a load at t: clears `out`, appends nodal forces
+/// (indices into the system's DOFs).
+using TimeLoadFn = std::function<void(double t, std::vector<NodalForce>& out)>;
 
 /// Clears `out` and appends the time-dependent loads of `beam` at t (an index
 /// may appear more than once: add them up). Nothing is allocated once `out`

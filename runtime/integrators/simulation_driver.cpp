@@ -157,6 +157,7 @@ SimulationResult run_simulation(OdeSystem& system, const IntegratorSpec& integra
       break;
     }
     system.after_step(t_next, y);
+    if (options.on_step) options.on_step(t_next, y);
     t = t_next;
     result.steps = k;
     running_max = std::max(running_max, norm);

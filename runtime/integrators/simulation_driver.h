@@ -57,6 +57,9 @@ struct SimulationOptions {
   /// Install a SIGINT handler for the run (restored afterwards): Ctrl-C stops
   /// after the current step with status kInterrupted.
   bool handle_sigint = true;
+  /// Called after every accepted step (after OdeSystem::after_step) with the
+  /// state the step reached; empty = nothing.
+  std::function<void(double t, const Eigen::VectorXd& y)> on_step;
 };
 
 enum class SimulationStatus { kCompleted, kDiverged, kInterrupted, kFailed };

@@ -47,6 +47,7 @@ ContactReport AugmentedSystem::report(double t, const Eigen::VectorXd& y) {
   rhs(t, y, ydot);
   ContactReport r;
   r.lambda = lambda_;
+  r.qdd = qdd_;
   r.phi = dyn_->values().phi;
   r.phi_max = dyn_->phi_max(dyn_->values());
   r.s = dyn_->values().s;

@@ -2,12 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include "runtime/multibody/multibody_errors.h"
 
 namespace mbfe::runtime {
+
+namespace {
+constexpr double kEndSlack = 1e-3;  // of an element length
+}  // namespace
 
 void ConstraintValues::jc_times(const Eigen::VectorXd& x, Eigen::VectorXd& out) const {
   out.setZero(je.rows());
@@ -50,10 +55,10 @@ ContactConstraints::ContactConstraints(const mbfe_model_v1& model, std::vector<B
       throw std::invalid_argument(os.str());
     }
     const int want_rows = k.type == 0 ? 2 : 1;
-    if ((k.type != 0 && k.type != 1) || k.rows != want_rows) {
+    if (k.type < 0 || k.type > 2 || k.rows != want_rows) {
       std::ostringstream os;
       os << "contact '" << name << "': type " << k.type << " with " << k.rows
-         << " rows, expected type 0 (pin, 2 rows) or 1 (slider_pin, 1 row)";
+         << " rows, expected type 0 (pin, 2 rows), 1 (slider_pin, 1 row) or 2 (slider_spring, 1 row)";
       throw std::invalid_argument(os.str());
     }
     if (!k.position || !k.phi || !k.jacobians || !k.gamma) {
@@ -66,6 +71,7 @@ ContactConstraints::ContactConstraints(const mbfe_model_v1& model, std::vector<B
       throw std::invalid_argument(os.str());
     }
     row0_.push_back(rows_);
+    if (k.type == 2) continue;  // a penalty force (contact_springs.h), no constraint row
     for (int r = 0; r < k.rows; ++r) contact_of_row_.push_back(c);
     rows_ += k.rows;
   }
@@ -92,13 +98,22 @@ void ContactConstraints::evaluate(double t, const double* qb, const double* qc,
   for (int c = 0; c < num_contacts(); ++c) {
     const mbfe_contact_kernels_v1& k = model_.contacts[c];
     const BeamMesh& beam = beams_[k.beam];
+    if (k.type == 2) {  // not a constraint
+      out.s[c] = k.position(qb);
+      out.element[c] = -1;
+      continue;
+    }
     const double s = k.type == 0 ? k.at : k.position(qb);
     const double L = beam.length();
-    if (!(s >= 0.0 && s <= L)) {
+    // A slider exactly at an end is on the beam, and so is one that a finite
+    // difference (linearization.h) nudges past it: within a thousandth of an
+    // element the end element's cubic is extended, which is exact to O(slack^2).
+    const double slack = kEndSlack * beam.element_length;
+    if (!(s >= -slack && s <= L + slack)) {
       std::ostringstream os;
       os.precision(10);
-      os << "contact '" << contact_name(c) << "': the slider left beam '" << beam.name
-         << "' at t = " << t << " s: s = " << s << " m is outside [0, " << L << "] m";
+      os << "contact '" << contact_name(c) << "' left beam '" << beam.name << "' at t = " << t
+         << " s: s = " << s << " m is outside the beam's [0, " << L << "] m";
       throw SliderOffBeamError(os.str(), contact_name(c), t, s);
     }
     const int idx =
@@ -141,6 +156,7 @@ void ContactConstraints::evaluate_gamma(const double* qb, const double* qc, cons
   out.gamma.resize(rows_);
   for (int c = 0; c < num_contacts(); ++c) {
     const mbfe_contact_kernels_v1& k = model_.contacts[c];
+    if (k.type == 2) continue;
     const BeamMesh& beam = beams_[k.beam];
     const int idx = out.element[c];
     double qe[4], qed[4];

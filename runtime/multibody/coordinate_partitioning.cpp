@@ -83,6 +83,7 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
     q_(part_.dependent[i]) = std::isfinite(predicted) ? predicted : v;
   }
   q_.tail(nc) = y.segment(nu_, nc);
+  dyn_->impose_motion(t, q_, qd_);  // driven coordinates follow their motion, not y
   ConstraintValues& cv = cv_close_;
   jv_.resize(m, m);
   bool stalled = false, diverged = false;
@@ -132,6 +133,7 @@ void PartitionedSystem::close(double t, const Eigen::VectorXd& y) {
   // Velocities: J_v v' = -(J_u u' + J_c q_c').
   for (int i = 0; i < nu_; ++i) qd_(part_.independent[i]) = y(nz_ + i);
   qd_.tail(nc) = y.segment(nz_ + nu_, nc);
+  dyn_->impose_motion(t, q_, qd_);
   if (m > 0) {
     jv_lu_.compute(jv_);
     cv.jc_times(qd_.tail(nc), r_);
@@ -267,6 +269,7 @@ ContactReport PartitionedSystem::report(double t, const Eigen::VectorXd& y) {
   rhs(t, y, ydot);
   ContactReport r;
   r.lambda = lambda_;
+  r.qdd = qdd_;
   ConstraintValues cv;
   dyn_->constraints().evaluate(t, q_.data(), q_.data() + dyn_->nb(), nullptr, nullptr, cv);
   r.phi = cv.phi;

@@ -7,6 +7,7 @@
 #include <Eigen/SparseCore>
 #include <functional>
 
+#include "runtime/fem/beam_loads.h"
 #include "runtime/fem/beam_system.h"
 #include "runtime/multibody/contact_constraints.h"
 
@@ -33,6 +34,9 @@ struct CoupledBeam {
   /// (the low-rank adjusted beam: M^-1 U = Phi_L). Empty: force, then a
   /// sparse M solve. Must agree with M, P and force.
   BeamForceFn acceleration;
+  /// Optional: the loads that change with time (runtime/fem/beam_loads.h), on
+  /// this beam's free DOFs.
+  TimeLoadFn time_loads;
 };
 
 /// Mesh of an assembled beam (uniform elements).

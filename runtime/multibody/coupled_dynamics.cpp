@@ -30,6 +30,7 @@ CoupledDynamics::CoupledDynamics(const mbfe_model_v1& model, std::vector<Coupled
       beams_(std::move(beams)),
       bodies_(std::move(bodies)),
       cc_(model, meshes_of(beams_)),
+      springs_(model, cc_),
       nb_(model.num_coordinates),
       nc_(cc_.num_beam_dofs()) {
   if (model.abi_version != MBFE_MODEL_ABI_VERSION) {
@@ -53,6 +54,19 @@ CoupledDynamics::CoupledDynamics(const mbfe_model_v1& model, std::vector<Coupled
     }
     mc_factor_.push_back(std::move(f));
   }
+  for (int i = 0; i < model.num_driven; ++i) driven_.push_back(model.driven_coordinates[i]);
+  if (!driven_.empty() && cc_.num_rows() > 0) {
+    throw std::invalid_argument("model '" + std::string(model.model_name) +
+                                "': driven joints with pin or slider_pin contacts are not supported; "
+                                "use slider_spring contacts with driven joints");
+  }
+  const int nd = static_cast<int>(driven_.size());
+  drive_q_.resize(nd);
+  drive_qd_.resize(nd);
+  drive_qdd_.resize(nd);
+  drive_m_rows_.resize(nd, nb_);
+  drive_bias_.resize(nd);
+  fc_extra_.resize(nc_);
   const int m = cc_.num_rows();
   mb_row_.resize(nb_, nb_);
   mb_.resize(nb_, nb_);
@@ -77,9 +91,38 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
   }
   const double* qb = q.data();
   const double* qbd = qd.data();
+  if (!driven_.empty()) {
+    q_motion_ = q;
+    qd_motion_ = qd;
+    impose_motion(t, q_motion_, qd_motion_);
+    qb = q_motion_.data();
+    qbd = qd_motion_.data();
+  }
   evaluate_dynamics(model_, qb, qbd, t, mb_row_.data(), fb_.data(), qb_force_.data());
   mb_ = mb_row_;
+  // Spring contacts load both sides; their beam part joins the time loads below.
+  fc_extra_.setZero();
+  bool extra = false;
+  if (springs_.count() > 0) {
+    springs_.apply(qb, q.data() + nb_, qbd, qd.data() + nb_, qb_force_, fc_extra_);
+    extra = true;
+  }
   rb_ = qb_force_ - fb_;
+  // Driven coordinates: q'' known, so M's column moves to the right-hand side
+  // and the row becomes q''_d = motion''(t) (M stays symmetric positive definite).
+  for (std::size_t k = 0; k < driven_.size(); ++k) {
+    const int d = driven_[k];
+    drive_m_rows_.row(k) = mb_.row(d);
+    drive_bias_[k] = fb_[d] - qb_force_[d];
+  }
+  for (std::size_t k = 0; k < driven_.size(); ++k) {
+    const int d = driven_[k];
+    rb_ -= mb_.col(d) * drive_qdd_[k];
+    mb_.row(d).setZero();
+    mb_.col(d).setZero();
+    mb_(d, d) = 1.0;
+  }
+  for (std::size_t k = 0; k < driven_.size(); ++k) rb_[driven_[k]] = drive_qdd_[k];
   if (at_q != nullptr) {
     cv_.phi = at_q->phi;  // same sizes every call: copies, no allocation
     cv_.jb = at_q->jb;
@@ -91,6 +134,7 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
   } else {
     cc_.evaluate(t, qb, q.data() + nb_, qbd, qd.data() + nb_, cv_);
   }
+  for (const CoupledBeam& b : beams_) extra = extra || static_cast<bool>(b.time_loads);
   // Beam side: r_c = P - (C qd + K q), a_c0 = M_c^-1 r_c.
   for (std::size_t k = 0; k < beams_.size(); ++k) {
     const int off = nb_ + cc_.beam_offset(static_cast<int>(k));
@@ -103,6 +147,22 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
     beams_[k].force(q.segment(off, nk), qd.segment(off, nk), rck);
     rck = beams_[k].P - rck;
     ac0_.segment(off - nb_, nk) = mc_factor_[k]->solve(rck);
+  }
+  // Loads that change with time and spring forces: one more solve with M_c
+  // per beam they touch.
+  if (extra) {
+    for (std::size_t k = 0; k < beams_.size(); ++k) {
+      const int off = cc_.beam_offset(static_cast<int>(k));
+      const int nk = beams_[k].mesh.num_free;
+      Eigen::Ref<Eigen::VectorXd> fk = fc_extra_.segment(off, nk);
+      if (beams_[k].time_loads) {
+        beams_[k].time_loads(t, nodal_);
+        for (const NodalForce& f : nodal_) fk[f.index] += f.value;
+      }
+      if (fk.isZero(0.0)) continue;
+      tmp_ = fk;
+      ac0_.segment(off, nk) += mc_factor_[k]->solve(tmp_);
+    }
   }
   // W = M_c^-1 J_c^T column by column (each row of J_c lives on one beam, on
   // at most 4 of its DOFs): a combination of the cached columns M_c^-1 e_k.
@@ -243,6 +303,19 @@ double CoupledDynamics::phi_max(const ConstraintValues& cv, int* row) const {
   const double v = cv.phi.cwiseAbs().maxCoeff(&r);
   if (row) *row = r;
   return v;
+}
+
+void CoupledDynamics::impose_motion(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd) const {
+  if (driven_.empty()) return;
+  model_.motion(t, drive_q_.data(), drive_qd_.data(), drive_qdd_.data());
+  for (std::size_t k = 0; k < driven_.size(); ++k) {
+    q[driven_[k]] = drive_q_[k];
+    qd[driven_[k]] = drive_qd_[k];
+  }
+}
+
+void CoupledDynamics::drive_reactions(const Eigen::VectorXd& qdd, Eigen::VectorXd& out) const {
+  out = drive_m_rows_ * qdd.head(nb_) + drive_bias_;
 }
 
 std::vector<std::string> coupled_coordinate_names(const CoupledDynamics& dyn) {

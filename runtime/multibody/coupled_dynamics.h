@@ -19,6 +19,7 @@
 
 #include "runtime/abi/mbfe_model_abi.h"
 #include "runtime/multibody/contact_constraints.h"
+#include "runtime/multibody/contact_springs.h"
 #include "runtime/multibody/coupled_beam.h"
 #include "runtime/multibody/partition_choice.h"
 #include "runtime/multibody/rigid_system.h"
@@ -32,6 +33,7 @@ struct ContactReport {
   Eigen::VectorXd phi;      // constraint residuals (m)
   double phi_max = 0.0;     // max |Phi| (m)
   std::vector<double> s;    // per contact: position along its beam (m)
+  Eigen::VectorXd qdd;      // accelerations [q_b''; q_c''] at this state
 };
 
 /// The shared core: rigid kernels, factored beam mass matrices and the two
@@ -72,12 +74,36 @@ class CoupledDynamics {
   /// Constraint residual max |Phi| at q, and the row holding it.
   double phi_max(const ConstraintValues& cv, int* row = nullptr) const;
 
+  /// The slider_spring contacts; states() are those of the last evaluate().
+  const ContactSprings& springs() const { return springs_; }
+
+  /// Driven joints (`motion:`): their rigid coordinates, model order. In
+  /// evaluate() their q and q' are those of the motion at t, whatever the
+  /// state says, and the solvers return their q'' = motion''(t).
+  const std::vector<int>& driven() const { return driven_; }
+  /// Overwrites the driven coordinates of q and qd (n entries) with the motion at t.
+  void impose_motion(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd) const;
+  /// After evaluate() and a solve: the generalized force (N or N m) each
+  /// driven joint exerts to follow its motion, (M q'' + F - Q)_d.
+  void drive_reactions(const Eigen::VectorXd& qdd, Eigen::VectorXd& out) const;
+
  private:
   const mbfe_model_v1& model_;
   std::vector<CoupledBeam> beams_;
   std::vector<BodyInertia> bodies_;
   ContactConstraints cc_;
+  ContactSprings springs_;
   int nb_, nc_;
+  std::vector<int> driven_;
+  // Driven joints at the last evaluate(): the motion, and the rows of M and of
+  // F - Q before the driven coordinates were eliminated.
+  mutable Eigen::VectorXd drive_q_, drive_qd_, drive_qdd_;
+  Eigen::MatrixXd drive_m_rows_;
+  Eigen::VectorXd drive_bias_;
+  Eigen::VectorXd q_motion_, qd_motion_;  // the state with the motion imposed
+  // Beam forces that change with time (loads, springs), and their scratch.
+  Eigen::VectorXd fc_extra_;
+  std::vector<NodalForce> nodal_;
   std::vector<std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>> mc_factor_;
   // Workspace.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> mb_row_;

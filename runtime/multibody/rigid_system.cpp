@@ -130,6 +130,10 @@ RigidSystem::RigidSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bo
   // constructor leaves its `info` uninitialised and the assignment copies it,
   // which UndefinedBehaviorSanitizer reports (invalid enum load, LLT.h:66).
   llt_.compute(Eigen::MatrixXd::Identity(nq_, nq_));
+  for (int i = 0; i < model.num_driven; ++i) driven_.push_back(model.driven_coordinates[i]);
+  drive_q_.resize(static_cast<Eigen::Index>(driven_.size()));
+  drive_qd_.resize(drive_q_.size());
+  drive_qdd_.resize(drive_q_.size());
 }
 
 void RigidSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
@@ -140,17 +144,58 @@ void RigidSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot)
   }
   const double* q = y.data();
   const double* qd = y.data() + nq_;
+  if (!driven_.empty()) {
+    // Driven coordinates follow their motion whatever y says.
+    y_motion_ = y;
+    impose_motion(t, y_motion_);
+    q = y_motion_.data();
+    qd = y_motion_.data() + nq_;
+  }
   evaluate_dynamics(model_, q, qd, t, m_row_.data(), f_.data(), q_force_.data());
   m_ = m_row_;
+  rhs_ = q_force_ - f_;
+  // A driven coordinate's q'' is known: its column of M moves to the
+  // right-hand side and its row becomes q''_d = motion''(t).
+  for (std::size_t k = 0; k < driven_.size(); ++k) rhs_ -= m_.col(driven_[k]) * drive_qdd_[k];
+  for (std::size_t k = 0; k < driven_.size(); ++k) {
+    const int d = driven_[k];
+    m_.row(d).setZero();
+    m_.col(d).setZero();
+    m_(d, d) = 1.0;
+    rhs_[d] = drive_qdd_[k];
+  }
   llt_.compute(m_);
   if (llt_.info() != Eigen::Success || !(llt_.rcond() >= kMassRcondFloor)) {
     throw_singular_mass_matrix(model_, bodies_, m_, t);
   }
-  rhs_ = q_force_ - f_;
   qdd_ = llt_.solve(rhs_);
   ydot.resize(2 * nq_);
-  ydot.head(nq_) = y.tail(nq_);
+  if (driven_.empty()) ydot.head(nq_) = y.tail(nq_);
+  else ydot.head(nq_) = y_motion_.tail(nq_);
   ydot.tail(nq_) = qdd_;
+}
+
+void RigidSystem::impose_motion(double t, Eigen::VectorXd& y) const {
+  if (driven_.empty()) return;
+  model_.motion(t, drive_q_.data(), drive_qd_.data(), drive_qdd_.data());
+  for (std::size_t k = 0; k < driven_.size(); ++k) {
+    y[driven_[k]] = drive_q_[k];
+    y[nq_ + driven_[k]] = drive_qd_[k];
+  }
+}
+
+void RigidSystem::drive_reactions(double t, const Eigen::VectorXd& y, Eigen::VectorXd& out) {
+  out.resize(static_cast<Eigen::Index>(driven_.size()));
+  if (driven_.empty()) return;
+  Eigen::VectorXd ydot;
+  rhs(t, y, ydot);  // q'' of the free coordinates; the motion's for the driven ones
+  const double* q = y_motion_.data();
+  const double* qd = y_motion_.data() + nq_;
+  evaluate_dynamics(model_, q, qd, t, m_row_.data(), f_.data(), q_force_.data());
+  for (std::size_t k = 0; k < driven_.size(); ++k) {
+    const int d = driven_[k];
+    out[static_cast<Eigen::Index>(k)] = m_row_.row(d).dot(ydot.tail(nq_)) + f_[d] - q_force_[d];
+  }
 }
 
 std::string RigidSystem::name(int i) const {

@@ -82,6 +82,17 @@ class RigidSystem : public OdeSystem {
   /// kinetic energy 1/2 q'^T M(q) q' in J at y.
   double kinetic_energy(const Eigen::VectorXd& y);
 
+  /// Driven joints (`motion:`): their coordinates, model order. rhs() takes
+  /// their q and q' from the motion at t, not from y, and gives their
+  /// q'' = motion''(t): the free coordinates follow
+  /// M_ff q''_f = Q_f - F_f - M_fd q''_d.
+  const std::vector<int>& driven() const { return driven_; }
+  /// Overwrites the driven entries of y = [q; q'] with the motion at t.
+  void impose_motion(double t, Eigen::VectorXd& y) const;
+  /// The generalized force (N or N m) each driven joint exerts at (t, y) to
+  /// follow its motion: (M q'' + F - Q)_d.
+  void drive_reactions(double t, const Eigen::VectorXd& y, Eigen::VectorXd& out);
+
   /// M is declared singular below this reciprocal condition estimate.
   static constexpr double kMassRcondFloor = 1e-13;
 
@@ -94,6 +105,9 @@ class RigidSystem : public OdeSystem {
   Eigen::MatrixXd m_;
   Eigen::VectorXd f_, q_force_, rhs_, qdd_;
   Eigen::LLT<Eigen::MatrixXd> llt_;
+  std::vector<int> driven_;
+  mutable Eigen::VectorXd drive_q_, drive_qd_, drive_qdd_;
+  Eigen::VectorXd y_motion_;
 };
 
 }  // namespace mbfe::runtime

@@ -22,6 +22,7 @@ namespace {
 std::vector<std::string> multiplier_names(const ir::Model& model) {
   std::vector<std::string> out;
   for (const ir::Contact& c : model.contacts) {
+    if (!c.is_constraint()) continue;  // a spring: force_<contact>, after the multipliers
     if (c.type == ir::ContactType::kPin) {
       out.push_back("lambda_" + c.name + "_1");
       out.push_back("lambda_" + c.name + "_2");
@@ -87,13 +88,43 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
     layout.columns.push_back(l);
     layout.units.push_back("N");
   }
+  const ContactSprings& springs = dynamics->springs();
+  for (int k = 0; k < springs.count(); ++k) {
+    layout.columns.push_back("force_" + springs.name(k));
+    layout.units.push_back("N");
+  }
+  const std::vector<int>& driven = dynamics->driven();
+  for (int d : driven) {
+    layout.columns.push_back(model.ir().bodies[d].name + "_drive");
+    layout.units.push_back(model.ir().bodies[d].joint.type == ir::JointType::kRevolute ? "N m" : "N");
+  }
   layout.columns.push_back("phi_abs");
   layout.units.push_back("m");
   observer.begin(layout);
 
   std::vector<double> values(layout.columns.size());
-  Eigen::VectorXd q(n), qd(n);
+  Eigen::VectorXd q(n), qd(n), reactions;
   SimulationOptions options = driver_options(request);
+  // Lift-offs and time off contact, on every accepted step.
+  std::vector<SpringContactTally> tally(springs.count());
+  for (int k = 0; k < springs.count(); ++k) tally[k].name = springs.name(k);
+  double t_prev = 0.0;
+  if (springs.count() > 0) {
+    options.on_step = [&](double t, const Eigen::VectorXd& y) {
+      system->full_state(t, y, q, qd);
+      system->report(t, y);  // evaluates the springs at this state
+      for (int k = 0; k < springs.count(); ++k) {
+        const SpringContactState& st = springs.states()[k];
+        SpringContactTally& c = tally[k];
+        const bool touching = st.force > 0.0;
+        if (st.on_beam && !touching) c.time_off += t - t_prev;
+        if (c.seen && c.in_contact && !touching && st.on_beam) ++c.lift_offs;
+        c.in_contact = touching;
+        c.seen = c.seen || st.on_beam;
+      }
+      t_prev = t;
+    };
+  }
   // An unstable beam mode drags the contacts along; catch it while the Newton
   // closure can still follow (a state 1e4 times the largest seen).
   options.divergence_factor = 1.0e4;
@@ -112,6 +143,7 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
         row_fault = e.what();  // the step after this one fails the same way
         return;
       }
+      dynamics->impose_motion(t, q, qd);
       std::size_t k = 0;
       values[k++] = t;
       for (const Eigen::VectorXd* x : {&q, &qd}) {
@@ -124,11 +156,17 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
       }
       for (int r = 0; r < m; ++r) values[k++] = contacts.lambda[r];
       values[k++] = contacts.phi_max;
+      for (const SpringContactState& st : springs.states()) values[k++] = st.force;
+      if (!driven.empty()) {
+        dynamics->drive_reactions(contacts.qdd, reactions);
+        for (Eigen::Index i = 0; i < reactions.size(); ++i) values[k++] = reactions[i];
+      }
       observer.row(OutputRow{t, values, q, qd});
     });
   } catch (const std::invalid_argument& e) {
     throw InvalidInput(e.what());
   }
+  report.springs = tally;
   if (report.run.status == SimulationStatus::kCompleted && row_fault.empty()) return report;
   // The stable limit of the linearised system at the initial state tells an
   // instability of the integrator from a fault of the model.

@@ -14,6 +14,7 @@ SimulationReport run_rigid(const AssembledModel& model, const SimulationRequest&
   model.initial_coordinates(q0, qd0);
   Eigen::VectorXd y0(2 * n);
   y0 << q0, qd0;
+  system.impose_motion(0.0, y0);
 
   OutputLayout layout;
   layout.columns.push_back("t");
@@ -23,18 +24,29 @@ SimulationReport run_rigid(const AssembledModel& model, const SimulationRequest&
     const ir::Body& body = model.ir().bodies[i % n];
     layout.units.push_back(i < n ? coordinate_unit(body) : rate_unit(body));
   }
+  for (int d : system.driven()) {
+    layout.columns.push_back(model.ir().bodies[d].name + "_drive");
+    layout.units.push_back(model.ir().bodies[d].joint.type == ir::JointType::kRevolute ? "N m" : "N");
+  }
   observer.begin(layout);
-  std::vector<double> values(1 + 2 * n);
-  Eigen::VectorXd q(n), qd(n);
+  std::vector<double> values(layout.columns.size());
+  Eigen::VectorXd q(n), qd(n), y_out(2 * n), reactions;
 
   SimulationReport report;
   try {
     report.run = run_simulation(system, request.integrator, y0, driver_options(request),
                                 [&](double t, const Eigen::VectorXd& y) {
+                                  y_out = y;
+                                  system.impose_motion(t, y_out);
                                   values[0] = t;
-                                  for (int i = 0; i < 2 * n; ++i) values[1 + i] = y[i];
-                                  q = y.head(n);
-                                  qd = y.tail(n);
+                                  for (int i = 0; i < 2 * n; ++i) values[1 + i] = y_out[i];
+                                  if (!system.driven().empty()) {
+                                    system.drive_reactions(t, y_out, reactions);
+                                    for (Eigen::Index k = 0; k < reactions.size(); ++k)
+                                      values[1 + 2 * n + k] = reactions[k];
+                                  }
+                                  q = y_out.head(n);
+                                  qd = y_out.tail(n);
                                   observer.row(OutputRow{t, values, q, qd});
                                 });
   } catch (const std::invalid_argument& e) {

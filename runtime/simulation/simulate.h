@@ -29,6 +29,7 @@
 
 #include "runtime/integrators/integrator.h"
 #include "runtime/integrators/simulation_driver.h"
+#include "runtime/multibody/contact_springs.h"
 #include "runtime/simulation/assembled_model.h"
 #include "runtime/simulation/beam_probes.h"
 
@@ -108,6 +109,8 @@ struct SimulationReport {
   /// stable limit 1.4597e-05 (fastest eigenvalue -1.3702e5)", "failed at t = ...
   /// s: <the fault>", "interrupted at t = ... s".
   std::string message;
+  /// Coupled models: lift-offs and time off contact of each slider_spring contact.
+  std::vector<SpringContactTally> springs;
 };
 
 /// Runs the request. Numerical faults (divergence, a singular mass matrix, a
