@@ -136,7 +136,13 @@ int cmd_simulate(const Args& args) {
   const auto out = parsed.value("out");
   CsvOutput csv(out.value_or(""));
   CsvObserver observer(csv);
-  const runtime::SimulationReport report = model.simulate(request, observer);
+  runtime::SimulationReport report;
+  try {
+    report = model.simulate(request, observer);
+  } catch (...) {
+    csv.discard_if_empty();  // bad input found on the way (a static start that fails): no file left
+    throw;
+  }
   csv.flush();
   const runtime::SimulationResult& run = report.run;
   const std::string where = out ? " to " + *out : std::string();
@@ -146,7 +152,7 @@ int cmd_simulate(const Args& args) {
       std::cerr << "mbfe: " << model.ir().name << variant << ": " << run.steps << " " << run.integrator
                 << " steps of " << run.step << " s to t = " << run.t << " s in " << run.wall_seconds << " s; "
                 << csv.rows() << " rows written" << where << "\n";
-    print_spring_tally(report);
+    if (!request.quiet) print_spring_tally(report);
     return 0;
   }
   std::cerr << "mbfe simulate: " << report.message << (report.variant.empty() ? "" : "; " + report.variant) << "; "

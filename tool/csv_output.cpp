@@ -1,6 +1,7 @@
 #include "tool/csv_output.h"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -28,6 +29,13 @@ CsvOutput::~CsvOutput() {
   if (!file_) return;
   std::fflush(file_);
   if (owned_) std::fclose(file_);
+}
+
+void CsvOutput::discard_if_empty() {
+  if (!owned_ || !file_ || rows_ > 0) return;
+  std::fclose(file_);
+  file_ = nullptr;
+  std::remove(path_.c_str());
 }
 
 void CsvOutput::header(const std::vector<std::string>& columns) {

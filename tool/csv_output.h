@@ -25,6 +25,9 @@ class CsvOutput {
   /// One row; numbers printed with 17 significant digits (%.17g).
   void row(const double* values, std::size_t count);
   void flush();
+  /// Closes and removes the file when no row has been written: bad input
+  /// found after the file was opened leaves nothing behind.
+  void discard_if_empty();
   std::size_t rows() const { return rows_; }
 
  private:

@@ -3,7 +3,10 @@
 // y = [u; q_c; u'; q_c'] with the dependent rigid coordinates closed by Newton
 // at every evaluation; the augmented one y = [q_b; q_c; q_b'; q_c'] with the
 // multipliers (a cross-check; |Phi| drifts).
+#include <algorithm>
+#include <cmath>
 #include <memory>
+#include <sstream>
 
 #include "runtime/multibody/augmented_system.h"
 #include "runtime/multibody/coordinate_partitioning.h"
@@ -12,10 +15,15 @@
 #include "runtime/simulation/invalid_input.h"
 #include "runtime/simulation/run_diagnosis.h"
 #include "runtime/simulation/runs.h"
+#include "runtime/simulation/static_start.h"
+#include "ir/model_error.h"
 
 namespace mbfe::runtime::detail {
 
 namespace {
+
+// A projected coordinate that moved less than this (relative) moved by round-off.
+constexpr double kProjectionNoise = 1e-12;
 
 /// Multiplier columns, stacked like the constraint rows: lambda_<contact>_1/_2
 /// for a pin, lambda_<contact> for a slider_pin.
@@ -31,6 +39,57 @@ std::vector<std::string> multiplier_names(const ir::Model& model) {
     }
   }
   return out;
+}
+
+/// Replaces q (and the driven entries of qd) with the static equilibrium at
+/// t = 0 (static_start.h). @throws ir::ModelError at `initial:` when there is none.
+void start_static(const AssembledModel& model, CoupledDynamics& dyn, Eigen::VectorXd& q, Eigen::VectorXd& qd) {
+  const int n = dyn.n();
+  qd = Eigen::VectorXd::Zero(n);
+  dyn.impose_motion(0.0, q, qd);
+  const std::vector<std::string> all_names = coupled_coordinate_names(dyn);
+  std::vector<int> unknown;
+  std::vector<std::string> names;
+  const std::vector<int>& driven = dyn.driven();
+  for (int i = 0; i < n; ++i) {
+    if (std::find(driven.begin(), driven.end(), i) != driven.end()) continue;
+    unknown.push_back(i);
+    names.push_back(all_names[i]);
+  }
+  Eigen::VectorXd x0(unknown.size()), state = q, qdd, lambda;
+  for (std::size_t k = 0; k < unknown.size(); ++k) x0[k] = q[unknown[k]];
+  const StaticResidualFn residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    for (std::size_t k = 0; k < unknown.size(); ++k) state[unknown[k]] = x[k];
+    dyn.evaluate(0.0, state, qd);
+    dyn.solve_augmented(0.0, qdd, lambda);
+    r.resize(static_cast<Eigen::Index>(unknown.size()) + dyn.m());
+    for (std::size_t k = 0; k < unknown.size(); ++k) r[k] = qdd[unknown[k]];
+    r.tail(dyn.m()) = dyn.values().phi;
+  };
+  try {
+    const StaticSolution solution = solve_static(residual, x0, names);
+    for (std::size_t k = 0; k < unknown.size(); ++k) q[unknown[k]] = solution.x[k];
+  } catch (const std::runtime_error& e) {
+    const ir::Model& m = model.ir();
+    throw ir::ModelError(m.source_path, m.initial.loc, "static start of model '" + m.name + "': " + e.what());
+  }
+}
+
+/// "link1 by +0.0012 rad, beam_w3 by -1e-05 m": the coordinates the projection
+/// onto the contacts moved (beyond round-off), for the notice.
+std::string projection_moves(const AssembledModel& model, const std::vector<std::string>& names,
+                             const Eigen::VectorXd& before, const Eigen::VectorXd& after) {
+  std::ostringstream os;
+  os.precision(6);
+  const int nb = static_cast<int>(model.ir().bodies.size());
+  for (Eigen::Index i = 0; i < before.size(); ++i) {
+    const double moved = after[i] - before[i];
+    if (!(std::abs(moved) > kProjectionNoise * (1.0 + std::abs(before[i])))) continue;
+    if (os.tellp() > 0) os << ", ";
+    os << names[i] << " by " << std::showpos << moved << std::noshowpos << " "
+       << (i < nb ? coordinate_unit(model.ir().bodies[i]) : std::string(names[i].find("_dw") != std::string::npos ? "rad" : "m"));
+  }
+  return os.str();
 }
 
 }  // namespace
@@ -52,10 +111,27 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
     system = std::make_unique<PartitionedSystem>(dynamics);
   Eigen::VectorXd q0, qd0, y0;
   model.initial_coordinates(q0, qd0);
+  dynamics->impose_motion(0.0, q0, qd0);
+  if (request.static_start.value_or(model.ir().initial.static_start)) start_static(model, *dynamics, q0, qd0);
   try {
     y0 = system->initial_state(0.0, q0, qd0);
   } catch (const ContactError& e) {
     throw InvalidInput(model.ir().source_path + ": inconsistent initial state: " + e.what());
+  }
+  {
+    // An initial state off the constraints is projected onto them: say so.
+    Eigen::VectorXd q(n), qd(n);
+    system->full_state(0.0, y0, q, qd);
+    const std::vector<std::string> names = coupled_coordinate_names(*dynamics);
+    const std::string moved = projection_moves(model, names, q0, q);
+    const std::string moved_rates = projection_moves(model, names, qd0, qd);
+    if (!moved.empty() || !moved_rates.empty()) {
+      std::string text = "the initial state violates the contacts and was projected onto them:";
+      if (!moved.empty()) text += " positions: " + moved + ";";
+      if (!moved_rates.empty()) text += " velocities (per s): " + moved_rates + ";";
+      if (request.strict) throw InvalidInput(model.ir().source_path + ": " + text + " (--strict)");
+      observer.notice(text);
+    }
   }
 
   OutputLayout layout;
@@ -88,6 +164,8 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
     layout.columns.push_back(l);
     layout.units.push_back("N");
   }
+  layout.columns.push_back("phi_abs");
+  layout.units.push_back("m");
   const ContactSprings& springs = dynamics->springs();
   for (int k = 0; k < springs.count(); ++k) {
     layout.columns.push_back("force_" + springs.name(k));
@@ -98,8 +176,6 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
     layout.columns.push_back(model.ir().bodies[d].name + "_drive");
     layout.units.push_back(model.ir().bodies[d].joint.type == ir::JointType::kRevolute ? "N m" : "N");
   }
-  layout.columns.push_back("phi_abs");
-  layout.units.push_back("m");
   observer.begin(layout);
 
   std::vector<double> values(layout.columns.size());
