@@ -28,7 +28,7 @@ ir::Beam paper_beam(int elements) {
   b.rayleigh_beta = 1.5e-4;
   b.supports = {{0.0, ir::SupportType::kPinned, -1, {}},
                 {1.0, ir::SupportType::kPinned, -1, {}}};
-  b.loads = {{0.5, -10.0, -1, {}}};
+  b.loads = {{0.5, ir::Expression::number(-10.0), -1, {}, {}}};
   return b;
 }
 

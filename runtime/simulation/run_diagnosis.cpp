@@ -39,6 +39,9 @@ std::string diagnose_run(const SimulationResult& result, const std::optional<Ste
   const bool beyond = finite && result.step > limit->h;
   const std::string fault = !row_fault.empty() ? row_fault : result.message;
   if (!diverged && !beyond) {
+    // A fault that names its own time (a slider leaving its beam inside a
+    // step) is said once, with that time.
+    if (fault.find(" at t = ") != std::string::npos) return fault;
     msg << "failed at t = " << result.t << " s: " << fault;
     return msg.str();
   }
