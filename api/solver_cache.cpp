@@ -9,11 +9,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 
 #include "api/file_util.h"
 #include "frontend/sha256.h"
 #include "generator/emit/generate_solver.h"
+#include "generator_fingerprint.h"
 #include "jit_config.h"
 
 namespace mbfe {
@@ -115,11 +117,20 @@ std::string solver_cache_dir() {
 }
 
 LoadedSolver load_solver(const ir::Model& model, bool quiet) {
-  const gen::GeneratedSolver sources = gen::generate_solver(model);
+  // The key: what the sources would be, without generating them. A model read
+  // from text is known by the SHA-256 of that text and the fingerprint of the
+  // code that turns text into sources; a model built otherwise by the sources.
+  std::optional<gen::GeneratedSolver> sources;
   const std::string compiler = jit_compiler();
   std::string key_material = std::string("mbfe ") + gen::generator_version() + "\n" + compiler +
                              "\n" + MBFE_JIT_FLAGS + "\n";
-  for (const auto& file : sources.files) key_material += file.name + "\n" + file.text;
+  if (!model.source_sha256.empty()) {
+    key_material += std::string("fingerprint ") + MBFE_GENERATOR_FINGERPRINT + "\nmodel " + model.name + " " +
+                    model.source_sha256 + "\n";
+  } else {
+    sources = gen::generate_solver(model);
+    for (const auto& file : sources->files) key_material += file.name + "\n" + file.text;
+  }
   const std::string key = frontend::sha256_hex(key_material).substr(0, 32);
 
   const fs::path cache(solver_cache_dir());
@@ -152,7 +163,8 @@ LoadedSolver load_solver(const ir::Model& model, bool quiet) {
     throw std::runtime_error(cache.string() + ": cannot create a build folder in the solver cache");
   const fs::path staging(staging_pattern);
   try {
-    for (const auto& file : sources.files) write_file_atomically((staging / file.name).string(), file.text);
+    if (!sources) sources = gen::generate_solver(model);
+    for (const auto& file : sources->files) write_file_atomically((staging / file.name).string(), file.text);
     const fs::path library = staging / kLibraryName;
     const std::string command = compiler + " " + MBFE_JIT_FLAGS +
                                 " -std=c++17 -shared -fPIC -DMBFE_SHARED_ENTRY -I" +
