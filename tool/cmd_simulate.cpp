@@ -20,7 +20,8 @@ rigid coordinates, the beam coordinates (or the --probe columns), their rates
 (_dot), the contact forces lambda_<contact> (slider_pin) and
 lambda_<contact>_1/_2 (pin: along and across the beam), N, phi_abs, the
 largest constraint residual |Phi| in m, force_<contact> of each slider_spring
-(N, compression positive) and <body>_drive, the force or torque a driven joint
+(N, compression positive), deflection_<contact>, the beam's deflection under
+its point (m, 0 off the beam), and <body>_drive, the force or torque a driven joint
 (joint.motion) exerts. Driven coordinates hold their motion's values. Flags
 override the model's `simulation:` block.
 

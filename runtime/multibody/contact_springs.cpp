@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "runtime/fem/hermite_shape.h"
+
 namespace mbfe::runtime {
 
 ContactSprings::ContactSprings(const mbfe_model_v1& model, const ContactConstraints& constraints)
@@ -39,6 +41,8 @@ void ContactSprings::apply(const double* qb, const double* qc, const double* qbd
       qed[j] = f >= 0 ? qcd[cols[j]] : 0.0;
     }
     kern.phi(qb, qe, s0, beam.element_length, &st.delta);
+    st.w = hermite::N((st.s - s0) / beam.element_length, beam.element_length) *
+           Eigen::Map<const Eigen::Vector4d>(qe);
     double je[4];
     kern.jacobians(qb, qe, s0, beam.element_length, jb_.data(), je);
     for (int j = 0; j < nb; ++j) st.rate += jb_[j] * qbd[j];

@@ -32,6 +32,7 @@ struct SpringContactState {
   double delta = 0.0;   // m, penetration (0 off the beam)
   double rate = 0.0;    // m/s, delta'
   double force = 0.0;   // N, compression positive (0 off the beam or lifted off)
+  double w = 0.0;       // m, the beam's deflection under the point (0 off the beam)
 };
 
 class ContactSprings {
@@ -61,11 +62,13 @@ class ContactSprings {
 };
 
 /// Lift-offs and time off contact of the spring contacts over a run, counted
-/// on accepted steps while the contact point is over its beam.
+/// on accepted steps while the contact point is over its beam. In contact
+/// means delta > 0 (a unilateral damper may still hold N at 0 there for a
+/// moment as the surfaces part; that is not a lift-off).
 struct SpringContactTally {
   std::string name;
-  int lift_offs = 0;        // transitions from N > 0 to N = 0
-  double time_off = 0.0;    // s with N = 0 while over the beam
+  int lift_offs = 0;        // transitions from delta > 0 to delta <= 0
+  double time_off = 0.0;    // s with delta <= 0 while over the beam
   bool in_contact = false;  // at the last accepted step
   bool seen = false;
 };

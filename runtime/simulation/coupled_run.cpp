@@ -171,6 +171,10 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
     layout.columns.push_back("force_" + springs.name(k));
     layout.units.push_back("N");
   }
+  for (int k = 0; k < springs.count(); ++k) {
+    layout.columns.push_back("deflection_" + springs.name(k));
+    layout.units.push_back("m");
+  }
   const std::vector<int>& driven = dynamics->driven();
   for (int d : driven) {
     layout.columns.push_back(model.ir().bodies[d].name + "_drive");
@@ -192,7 +196,7 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
       for (int k = 0; k < springs.count(); ++k) {
         const SpringContactState& st = springs.states()[k];
         SpringContactTally& c = tally[k];
-        const bool touching = st.force > 0.0;
+        const bool touching = st.delta > 0.0;  // in contact, pressing or not
         if (st.on_beam && !touching) c.time_off += t - t_prev;
         if (c.seen && c.in_contact && !touching && st.on_beam) ++c.lift_offs;
         c.in_contact = touching;
@@ -233,6 +237,7 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
       for (int r = 0; r < m; ++r) values[k++] = contacts.lambda[r];
       values[k++] = contacts.phi_max;
       for (const SpringContactState& st : springs.states()) values[k++] = st.force;
+      for (const SpringContactState& st : springs.states()) values[k++] = st.w;
       if (!driven.empty()) {
         dynamics->drive_reactions(contacts.qdd, reactions);
         for (Eigen::Index i = 0; i < reactions.size(); ++i) values[k++] = reactions[i];
