@@ -99,7 +99,8 @@ class Model {
   /// first use). @throws runtime::InvalidInput for a beam the analysis refuses.
   const runtime::AssembledModel& assembled() const;
 
-  /// M, F, Q and the constraints at `state`. @throws runtime::InvalidInput for
+  /// M, F, Q and the constraints at `state`; driven coordinates and rates are
+  /// the motion's at state.t. @throws runtime::InvalidInput for
   /// a model without bodies or vectors of the wrong size;
   /// runtime::SliderOffBeamError when a slider is off its beam.
   Evaluation evaluate(const State& state) const;

@@ -113,8 +113,18 @@ Evaluation Model::evaluate(const State& state) const {
   if (!shared_->solver)
     throw runtime::InvalidInput("model '" + model.name + "' has no bodies: nothing to evaluate (try mbfe modal)");
   const int nb = static_cast<int>(model.bodies.size());
-  const Eigen::VectorXd q = state_vector(state.q, nb, "q", "one per body, in model order");
-  const Eigen::VectorXd qd = state_vector(state.qd, nb, "qd", "one per body, in model order");
+  Eigen::VectorXd q = state_vector(state.q, nb, "q", "one per body, in model order");
+  Eigen::VectorXd qd = state_vector(state.qd, nb, "qd", "one per body, in model order");
+  const mbfe_model_v1& solver = *shared_->solver;
+  if (solver.num_driven > 0) {
+    // Driven coordinates are the motion's at t, whatever the state says.
+    std::vector<double> dq(solver.num_driven), dqd(solver.num_driven), dqdd(solver.num_driven);
+    solver.motion(state.t, dq.data(), dqd.data(), dqdd.data());
+    for (int k = 0; k < solver.num_driven; ++k) {
+      q[solver.driven_coordinates[k]] = dq[k];
+      qd[solver.driven_coordinates[k]] = dqd[k];
+    }
+  }
   Evaluation out;
   runtime::RigidTerms terms;
   runtime::evaluate_rigid_terms(*shared_->solver, q, qd, state.t, terms);

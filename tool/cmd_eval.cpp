@@ -15,15 +15,18 @@ constexpr const char* kHelp = R"(Usage: mbfe eval MODEL.yaml --q v1,v2,... --qd 
 
 Evaluates the generated solver at one state: the mass matrix M(q), the
 velocity-dependent inertial terms F(q, q') and the generalized forces
-Q(q, q', t) of M q'' + F = Q. Coordinates are in model order (one per body);
-missing --q/--qd mean zeros. With --json the output is
+Q(q, q', t) of M q'' + F = Q at time --t (s, default 0: time-dependent loads
+and driven joints). Coordinates are in model order (one per body); missing
+--q/--qd mean zeros; a driven joint's coordinate and rate are its motion's at
+--t, whatever --q/--qd say. With --json the output is
   {"M": [[...], ...], "F": [...], "Q": [...]}
 
 For a model with contacts, --qc/--qcd give the beam coordinates and their rates
 (all beams in file order, each beam's free DOFs [w, w'] per node from s = 0 to
 L, support-fixed DOFs removed; default zeros) and the output gains
   "constraints": {"Phi": [...], "Jb": [[...]], "Jc": [[...]], "gamma": [...]}
-stacked over the contacts in file order (2 rows per pin, 1 per slider_pin):
+stacked over the constraint contacts in file order (2 rows per pin, 1 per
+slider_pin; a slider_spring is a force, not a constraint, and has no row):
 Phi (m), J_b = dPhi/dq_b, J_c = dPhi/dq_c over all beam coordinates and
 gamma = -(dJ/dt) q' of J_b q_b'' + J_c q_c'' = gamma.
 

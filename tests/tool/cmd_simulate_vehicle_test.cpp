@@ -1,0 +1,130 @@
+// `mbfe simulate` and `mbfe eval` on the vehicle features, through the real
+// binary: a static start of a mechanism (exit 2 at the `static:` key, no output
+// file left), the projection of an inconsistent initial state (a notice, or
+// exit 2 with --strict), a driven joint in `eval --t`, and the columns of a
+// crossing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "tests/support/cli.h"
+#include "tests/support/process.h"
+
+namespace mbfe::test {
+namespace {
+
+std::string source(const std::string& relative) { return std::string(MBFE_SOURCE_DIR) + "/" + relative; }
+
+TEST(SimulateVehicle, StaticStartOfAMechanismIsBadInputAndLeavesNoFile) {
+  TempDir dir;
+  const fs::path model = dir / "mechanism.yaml";
+  spit(model, R"(model: loose_cart
+gravity: [0, -9.81]
+bodies:
+  - name: cart
+    parent: ground
+    joint: {type: prismatic, axis: [1, 0]}
+    mass: 1.0
+    inertia: 0
+  - name: arm
+    parent: cart
+    joint: {type: revolute}
+    mass: 1.0
+    inertia: 0.1
+    com: [0.5, 0]
+initial: {q: {arm: -1.0}, static: true}
+)");
+  const fs::path csv = dir / "out.csv";
+  const CliRun r = run_cli("simulate " + shell_quote(model.string()) + " --quiet --out " + shell_quote(csv.string()));
+  EXPECT_EQ(r.status, 2) << r.all();
+  // The `static: true` value on line 15, column 35; the coordinate nothing holds.
+  EXPECT_NE(r.err.find("mechanism.yaml:15:35: static start of model 'loose_cart': the structure is a mechanism: "
+                       "nothing holds 'cart' in place"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(csv));
+  // --start given runs the same file from `initial:` as written.
+  const CliRun given = run_cli("simulate " + shell_quote(model.string()) + " --quiet --start given --t-end 0.01 --out " +
+                               shell_quote(csv.string()));
+  EXPECT_EQ(given.status, 0) << given.all();
+}
+
+TEST(SimulateVehicle, AnInconsistentInitialStateIsAnnouncedOrRefused) {
+  // The double pendulum on the beam, its tip lifted off the beam by turning link1.
+  TempDir dir;
+  std::string yaml = slurp(source("models/double_pendulum_beam.yaml"));
+  const std::string from = "initial: {q: {link1: -1.3874443249943893";
+  ASSERT_NE(yaml.find(from), std::string::npos);
+  yaml.replace(yaml.find(from), from.size(), "initial: {q: {link1: -1.3");
+  const fs::path model = dir / "lifted.yaml";
+  spit(model, yaml);
+  const std::string args = "simulate " + shell_quote(model.string()) + " --quiet --t-end 1e-4 --out " +
+                           shell_quote((dir / "out.csv").string());
+  const CliRun r = run_cli(args);
+  EXPECT_EQ(r.status, 0) << r.all();
+  EXPECT_NE(r.err.find("the initial state violates the contacts and was projected onto them: positions: "),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("link2 by "), std::string::npos) << r.err;  // the dependent coordinate moved
+  const CliRun strict = run_cli(args + " --strict");
+  EXPECT_EQ(strict.status, 2) << strict.all();
+  EXPECT_NE(strict.err.find("(--strict)"), std::string::npos) << strict.err;
+  // The shipped, consistent start says nothing.
+  const CliRun consistent = run_cli("simulate models/double_pendulum_beam.yaml --quiet --t-end 1e-4 --out " +
+                                    shell_quote((dir / "ok.csv").string()));
+  EXPECT_EQ(consistent.status, 0) << consistent.all();
+  EXPECT_EQ(consistent.err.find("projected"), std::string::npos) << consistent.err;
+}
+
+TEST(SimulateVehicle, EvalTakesTheDrivenCoordinateFromTheMotionAtT) {
+  // A spring-damper on the driven joint sees the motion: Q_cart = -k x(t) - c x'(t)
+  // with x = 0.3 sin(2 t), whatever --q and --qd say.
+  TempDir dir;
+  const fs::path model = dir / "driven.yaml";
+  spit(model, R"yaml(model: driven_spring
+bodies:
+  - name: cart
+    parent: ground
+    joint: {type: prismatic, axis: [1, 0], motion: "0.3*sin(2*t)"}
+    mass: 1.0
+    inertia: 0
+  - name: arm
+    parent: cart
+    joint: {type: revolute}
+    mass: 1.0
+    inertia: 0.1
+loads:
+  - {type: spring_damper, joint: cart, stiffness: 100.0, damping: 10.0}
+)yaml");
+  const CliRun r = run_cli("eval " + shell_quote(model.string()) + " --q 3,0 --qd 7,0 --t 0.5 --json --quiet");
+  ASSERT_EQ(r.status, 0) << r.all();
+  const std::string key = "\"Q\":[";
+  const auto at = r.out.find(key);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double q_cart = std::stod(r.out.substr(at + key.size()));
+  const double expected = -100.0 * 0.3 * std::sin(1.0) - 10.0 * 0.6 * std::cos(1.0);
+  EXPECT_NEAR(q_cart, expected, 1e-12) << r.out;
+}
+
+TEST(SimulateVehicle, CrossingColumnsAndTally) {
+  TempDir dir;
+  const fs::path csv = dir / "crossing.csv";
+  const CliRun r = run_cli("simulate models/bridge_moving_mass.yaml --probe deck@10 --out " + shell_quote(csv.string()));
+  ASSERT_EQ(r.status, 0) << r.all();
+  const Csv c = read_csv(csv.string());
+  EXPECT_EQ(c.header, (std::vector<std::string>{"t", "carriage", "wheel", "deck@10", "carriage_dot", "wheel_dot",
+                                                "deck@10_dot", "phi_abs", "force_tyre", "deflection_tyre",
+                                                "carriage_drive"}));
+  ASSERT_EQ(c.rows.size(), 1201u);
+  for (const auto& row : c.rows) {
+    EXPECT_NEAR(row[1], 20.0 * row[0], 1e-12);  // the carriage follows its motion
+    EXPECT_EQ(row[4], 20.0);
+    EXPECT_GE(row[8], 0.0);  // the tyre never pulls
+  }
+  EXPECT_NE(r.err.find("mbfe: contact 'tyre': "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" off contact while over the beam"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace mbfe::test
