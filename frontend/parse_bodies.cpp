@@ -128,12 +128,13 @@ Load ModelParser::parse_load(const MapView& view) {
     load.torque = view.expression(view.require("value"));
     load.window = time_window(view);
   } else {
-    view.allow({"type", "joint", "stiffness", "damping", "rest"});
+    view.allow({"type", "joint", "stiffness", "damping", "rest", "start", "stop"});
     load.type = LoadType::kSpringDamper;
     load.body = existing_body(view, view.require("joint"));
     load.stiffness = at_least_or(view, "stiffness", 0.0);
     load.damping = at_least_or(view, "damping", 0.0);
     load.rest = view.number_or("rest", 0.0);
+    load.window = time_window(view);
   }
   return load;
 }

@@ -55,9 +55,9 @@ struct Body {
 
 enum class LoadType { kForce, kTorque, kSpringDamper };
 
-/// A load on the rigid part. Force: ground-frame force at a named point (or at
-/// the body-frame origin when no point is given). Torque: on the body. Both
-/// are expressions in t, zero outside `window`.
+/// A load on the rigid part, zero outside `window`. Force: ground-frame force
+/// at a named point (or at the body-frame origin when no point is given).
+/// Torque: on the body. Both are expressions in t.
 /// SpringDamper: Q_i += -stiffness (q_i - rest) - damping qd_i on the body's
 /// own joint coordinate.
 struct Load {

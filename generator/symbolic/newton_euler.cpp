@@ -45,8 +45,8 @@ SubtreeForces newton_euler_pass(const ir::Model& model, const std::vector<BodyKi
         torque_load[b] = torque_load[b] + window_factor(load.window, t) * to_ginac(load.torque, t);
         break;
       case ir::LoadType::kSpringDamper:
-        spring[b] = spring[b] - exact(load.stiffness) * (q[b] - exact(load.rest)) -
-                    exact(load.damping) * qd[b];
+        spring[b] = spring[b] - window_factor(load.window, t) * (exact(load.stiffness) * (q[b] - exact(load.rest)) +
+                                                                 exact(load.damping) * qd[b]);
         break;
     }
   }

@@ -16,7 +16,6 @@
 #include "runtime/simulation/run_diagnosis.h"
 #include "runtime/simulation/runs.h"
 #include "runtime/simulation/static_start.h"
-#include "ir/model_error.h"
 
 namespace mbfe::runtime::detail {
 
@@ -39,40 +38,6 @@ std::vector<std::string> multiplier_names(const ir::Model& model) {
     }
   }
   return out;
-}
-
-/// Replaces q (and the driven entries of qd) with the static equilibrium at
-/// t = 0 (static_start.h). @throws ir::ModelError at `initial:` when there is none.
-void start_static(const AssembledModel& model, CoupledDynamics& dyn, Eigen::VectorXd& q, Eigen::VectorXd& qd) {
-  const int n = dyn.n();
-  qd = Eigen::VectorXd::Zero(n);
-  dyn.impose_motion(0.0, q, qd);
-  const std::vector<std::string> all_names = coupled_coordinate_names(dyn);
-  std::vector<int> unknown;
-  std::vector<std::string> names;
-  const std::vector<int>& driven = dyn.driven();
-  for (int i = 0; i < n; ++i) {
-    if (std::find(driven.begin(), driven.end(), i) != driven.end()) continue;
-    unknown.push_back(i);
-    names.push_back(all_names[i]);
-  }
-  Eigen::VectorXd x0(unknown.size()), state = q, qdd, lambda;
-  for (std::size_t k = 0; k < unknown.size(); ++k) x0[k] = q[unknown[k]];
-  const StaticResidualFn residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
-    for (std::size_t k = 0; k < unknown.size(); ++k) state[unknown[k]] = x[k];
-    dyn.evaluate(0.0, state, qd);
-    dyn.solve_augmented(0.0, qdd, lambda);
-    r.resize(static_cast<Eigen::Index>(unknown.size()) + dyn.m());
-    for (std::size_t k = 0; k < unknown.size(); ++k) r[k] = qdd[unknown[k]];
-    r.tail(dyn.m()) = dyn.values().phi;
-  };
-  try {
-    const StaticSolution solution = solve_static(residual, x0, names);
-    for (std::size_t k = 0; k < unknown.size(); ++k) q[unknown[k]] = solution.x[k];
-  } catch (const std::runtime_error& e) {
-    const ir::Model& m = model.ir();
-    throw ir::ModelError(m.source_path, m.initial.loc, "static start of model '" + m.name + "': " + e.what());
-  }
 }
 
 /// "link1 by +0.0012 rad, beam_w3 by -1e-05 m": the coordinates the projection
@@ -112,7 +77,7 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   Eigen::VectorXd q0, qd0, y0;
   model.initial_coordinates(q0, qd0);
   dynamics->impose_motion(0.0, q0, qd0);
-  if (request.static_start.value_or(model.ir().initial.static_start)) start_static(model, *dynamics, q0, qd0);
+  if (request.static_start.value_or(model.ir().initial.static_start)) coupled_static_state(model.ir(), *dynamics, q0, qd0);
   try {
     y0 = system->initial_state(0.0, q0, qd0);
   } catch (const ContactError& e) {

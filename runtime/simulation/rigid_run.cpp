@@ -1,7 +1,4 @@
 // simulate() for a model of bodies only: y = [q; q'], y' = [q'; M^-1 (Q - F)].
-#include <algorithm>
-
-#include "ir/model_error.h"
 #include "runtime/multibody/rigid_system.h"
 #include "runtime/simulation/invalid_input.h"
 #include "runtime/simulation/run_diagnosis.h"
@@ -19,33 +16,8 @@ SimulationReport run_rigid(const AssembledModel& model, const SimulationRequest&
   Eigen::VectorXd y0(2 * n);
   y0 << q0, qd0;
   system.impose_motion(0.0, y0);
-  if (request.static_start.value_or(model.ir().initial.static_start)) {
-    // At rest apart from the driven joints: the free coordinates where their q'' vanish.
-    y0.tail(n).setZero();
-    system.impose_motion(0.0, y0);
-    std::vector<int> unknown;
-    std::vector<std::string> names;
-    for (int i = 0; i < n; ++i) {
-      if (std::find(system.driven().begin(), system.driven().end(), i) != system.driven().end()) continue;
-      unknown.push_back(i);
-      names.push_back(system.name(i));
-    }
-    Eigen::VectorXd x0(unknown.size()), y = y0, ydot;
-    for (std::size_t k = 0; k < unknown.size(); ++k) x0[k] = y0[unknown[k]];
-    const StaticResidualFn residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
-      for (std::size_t k = 0; k < unknown.size(); ++k) y[unknown[k]] = x[k];
-      system.rhs(0.0, y, ydot);
-      r.resize(x.size());
-      for (std::size_t k = 0; k < unknown.size(); ++k) r[k] = ydot[n + unknown[k]];
-    };
-    try {
-      const StaticSolution solution = solve_static(residual, x0, names);
-      for (std::size_t k = 0; k < unknown.size(); ++k) y0[unknown[k]] = solution.x[k];
-    } catch (const std::runtime_error& e) {
-      const ir::Model& m = model.ir();
-      throw ir::ModelError(m.source_path, m.initial.loc, "static start of model '" + m.name + "': " + e.what());
-    }
-  }
+  if (request.static_start.value_or(model.ir().initial.static_start)) rigid_static_state(model.ir(), system, y0);
+
 
   OutputLayout layout;
   layout.columns.push_back("t");

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ir/model_error.h"
+
 namespace mbfe::runtime {
 
 namespace {
@@ -75,6 +77,73 @@ StaticSolution solve_static(const StaticResidualFn& residual, const Eigen::Vecto
      << " Newton iterations (largest residual " << r.cwiseAbs().maxCoeff()
      << "); start from `initial:` as written, or from a state closer to equilibrium";
   throw std::runtime_error(os.str());
+}
+
+namespace {
+
+/// The indices of 0..n-1 that are not in `driven`.
+std::vector<int> free_indices(int n, const std::vector<int>& driven) {
+  std::vector<int> out;
+  for (int i = 0; i < n; ++i)
+    if (std::find(driven.begin(), driven.end(), i) == driven.end()) out.push_back(i);
+  return out;
+}
+
+[[noreturn]] void static_start_failed(const ir::Model& model, const std::exception& e) {
+  throw ir::ModelError(model.source_path, model.initial.loc,
+                       "static start of model '" + model.name + "': " + e.what());
+}
+
+}  // namespace
+
+void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::VectorXd& q, Eigen::VectorXd& qd) {
+  const int n = dyn.n();
+  qd = Eigen::VectorXd::Zero(n);
+  dyn.impose_motion(0.0, q, qd);
+  const std::vector<std::string> all_names = coupled_coordinate_names(dyn);
+  const std::vector<int> unknown = free_indices(n, dyn.driven());
+  std::vector<std::string> names;
+  for (int i : unknown) names.push_back(all_names[static_cast<std::size_t>(i)]);
+  Eigen::VectorXd x0(static_cast<Eigen::Index>(unknown.size())), state = q, qdd, lambda;
+  for (std::size_t k = 0; k < unknown.size(); ++k) x0[k] = q[unknown[k]];
+  const StaticResidualFn residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    for (std::size_t k = 0; k < unknown.size(); ++k) state[unknown[k]] = x[k];
+    dyn.evaluate(0.0, state, qd);
+    dyn.solve_augmented(0.0, qdd, lambda);
+    r.resize(x.size() + dyn.m());
+    for (std::size_t k = 0; k < unknown.size(); ++k) r[k] = qdd[unknown[k]];
+    r.tail(dyn.m()) = dyn.values().phi;
+  };
+  try {
+    const StaticSolution solution = solve_static(residual, x0, names);
+    for (std::size_t k = 0; k < unknown.size(); ++k) q[unknown[k]] = solution.x[k];
+  } catch (const std::runtime_error& e) {
+    static_start_failed(model, e);
+  }
+}
+
+void rigid_static_state(const ir::Model& model, RigidSystem& system, Eigen::VectorXd& y) {
+  const int n = system.num_coordinates();
+  // At rest apart from the driven joints: the free coordinates where their q'' vanish.
+  y.tail(n).setZero();
+  system.impose_motion(0.0, y);
+  const std::vector<int> unknown = free_indices(n, system.driven());
+  std::vector<std::string> names;
+  for (int i : unknown) names.push_back(system.name(i));
+  Eigen::VectorXd x0(static_cast<Eigen::Index>(unknown.size())), state = y, ydot;
+  for (std::size_t k = 0; k < unknown.size(); ++k) x0[k] = y[unknown[k]];
+  const StaticResidualFn residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    for (std::size_t k = 0; k < unknown.size(); ++k) state[unknown[k]] = x[k];
+    system.rhs(0.0, state, ydot);
+    r.resize(x.size());
+    for (std::size_t k = 0; k < unknown.size(); ++k) r[k] = ydot[n + unknown[k]];
+  };
+  try {
+    const StaticSolution solution = solve_static(residual, x0, names);
+    for (std::size_t k = 0; k < unknown.size(); ++k) y[unknown[k]] = solution.x[k];
+  } catch (const std::runtime_error& e) {
+    static_start_failed(model, e);
+  }
 }
 
 }  // namespace mbfe::runtime

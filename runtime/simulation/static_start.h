@@ -17,6 +17,10 @@
 #include <string>
 #include <vector>
 
+#include "ir/model.h"
+#include "runtime/multibody/coupled_dynamics.h"
+#include "runtime/multibody/rigid_system.h"
+
 namespace mbfe::runtime {
 
 /// residual(x, r): r = [accelerations of the unknowns; Phi] at x.
@@ -34,5 +38,14 @@ struct StaticSolution {
 ///         null direction), or "... did not converge ..." after 50 iterations.
 StaticSolution solve_static(const StaticResidualFn& residual, const Eigen::VectorXd& x0,
                             const std::vector<std::string>& names);
+
+/// A coupled model's static start: q (n = [q_b; q_c], the starting guess)
+/// becomes the equilibrium at t = 0, qd zero but for the driven joints'
+/// motion. @throws ir::ModelError at `model.initial.loc` when there is none.
+void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::VectorXd& q, Eigen::VectorXd& qd);
+
+/// A rigid model's static start on y = [q; q'] (q the starting guess).
+/// @throws ir::ModelError at `model.initial.loc` when there is none.
+void rigid_static_state(const ir::Model& model, RigidSystem& system, Eigen::VectorXd& y);
 
 }  // namespace mbfe::runtime

@@ -3,6 +3,7 @@
 #include "runtime/multibody/linearization.h"
 #include "runtime/multibody/multibody_errors.h"
 #include "runtime/simulation/invalid_input.h"
+#include "runtime/simulation/static_start.h"
 
 namespace mbfe::runtime {
 
@@ -23,6 +24,8 @@ ModelSpectrum from_linearization(const StateSpectrum& full, int coordinates) {
 
 ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
   adjusted = model.resolve_adjusted(adjusted);
+  // Linearised where a run starts: the static equilibrium when the model asks for it.
+  const bool static_start = model.ir().initial.static_start;
   Eigen::VectorXd q0, qd0;
   model.initial_coordinates(q0, qd0);
   try {
@@ -39,10 +42,15 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
         const int n = system.num_coordinates();
         Eigen::VectorXd y0(2 * n);
         y0 << q0, qd0;
+        system.impose_motion(0.0, y0);
+        if (static_start) rigid_static_state(model.ir(), system, y0);
         return from_linearization(linearized_spectrum(system, 0.0, y0), n);
       }
       case ModelKind::kCoupled: {
-        const StateSpectrum full = linearized_spectrum(model.make_dynamics(adjusted), 0.0, q0, qd0);
+        const std::shared_ptr<CoupledDynamics> dynamics = model.make_dynamics(adjusted);
+        dynamics->impose_motion(0.0, q0, qd0);
+        if (static_start) coupled_static_state(model.ir(), *dynamics, q0, qd0);
+        const StateSpectrum full = linearized_spectrum(dynamics, 0.0, q0, qd0);
         return from_linearization(full, static_cast<int>(full.eigenvalues.size()) / 2);
       }
     }
