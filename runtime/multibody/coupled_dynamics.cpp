@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "runtime/multibody/driven_coordinates.h"
 #include "runtime/multibody/multibody_errors.h"
 
 namespace mbfe::runtime {
@@ -108,21 +109,14 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
     extra = true;
   }
   rb_ = qb_force_ - fb_;
-  // Driven coordinates: q'' known, so M's column moves to the right-hand side
-  // and the row becomes q''_d = motion''(t) (M stays symmetric positive definite).
+  // Driven coordinates: q'' known (driven_coordinates.h). Their rows of M and
+  // F - Q are kept first, for the drive reactions.
   for (std::size_t k = 0; k < driven_.size(); ++k) {
     const int d = driven_[k];
     drive_m_rows_.row(k) = mb_.row(d);
     drive_bias_[k] = fb_[d] - qb_force_[d];
   }
-  for (std::size_t k = 0; k < driven_.size(); ++k) {
-    const int d = driven_[k];
-    rb_ -= mb_.col(d) * drive_qdd_[k];
-    mb_.row(d).setZero();
-    mb_.col(d).setZero();
-    mb_(d, d) = 1.0;
-  }
-  for (std::size_t k = 0; k < driven_.size(); ++k) rb_[driven_[k]] = drive_qdd_[k];
+  eliminate_driven(mb_, rb_, driven_, drive_qdd_);
   if (at_q != nullptr) {
     cv_.phi = at_q->phi;  // same sizes every call: copies, no allocation
     cv_.jb = at_q->jb;

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "runtime/multibody/driven_coordinates.h"
 #include "runtime/multibody/multibody_errors.h"
 
 namespace mbfe::runtime {
@@ -154,16 +155,7 @@ void RigidSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot)
   evaluate_dynamics(model_, q, qd, t, m_row_.data(), f_.data(), q_force_.data());
   m_ = m_row_;
   rhs_ = q_force_ - f_;
-  // A driven coordinate's q'' is known: its column of M moves to the
-  // right-hand side and its row becomes q''_d = motion''(t).
-  for (std::size_t k = 0; k < driven_.size(); ++k) rhs_ -= m_.col(driven_[k]) * drive_qdd_[k];
-  for (std::size_t k = 0; k < driven_.size(); ++k) {
-    const int d = driven_[k];
-    m_.row(d).setZero();
-    m_.col(d).setZero();
-    m_(d, d) = 1.0;
-    rhs_[d] = drive_qdd_[k];
-  }
+  eliminate_driven(m_, rhs_, driven_, drive_qdd_);
   llt_.compute(m_);
   if (llt_.info() != Eigen::Success || !(llt_.rcond() >= kMassRcondFloor)) {
     throw_singular_mass_matrix(model_, bodies_, m_, t);
