@@ -40,6 +40,12 @@ struct LoadOptions {
   /// How far the beams' modal analysis goes (simulation and the stability
   /// advisor need every mode: at most 2000 DOFs per beam by default).
   runtime::BeamAnalysisOptions beams;
+  /// Find the cached solver by the generated sources instead of the file's
+  /// SHA-256: files that differ only where the generated code does not look
+  /// (a beam's damping, the simulation block) share one compiled solver, at
+  /// the price of generating the sources on every load (what `mbfe sweep`
+  /// does for its points).
+  bool cache_by_sources = false;
 };
 
 /// M(q), F(q, q'), Q(q, q', t) of the rigid part at one state and, for a model

@@ -51,7 +51,7 @@ namespace {
 // The solver of a model with bodies, from the run-time cache.
 LoadedSolver cached_solver(const ir::Model& model, const LoadOptions& options) {
   if (model.bodies.empty()) return {};
-  return load_solver(model, options.quiet);
+  return load_solver(model, options.quiet, options.cache_by_sources);
 }
 
 }  // namespace

@@ -116,7 +116,7 @@ std::string solver_cache_dir() {
   return "/tmp/mbfe-cache-" + std::to_string(::getuid());
 }
 
-LoadedSolver load_solver(const ir::Model& model, bool quiet) {
+LoadedSolver load_solver(const ir::Model& model, bool quiet, bool by_sources) {
   // The key: what the sources would be, without generating them. A model read
   // from text is known by the SHA-256 of that text and the fingerprint of the
   // code that turns text into sources; a model built otherwise by the sources.
@@ -124,7 +124,7 @@ LoadedSolver load_solver(const ir::Model& model, bool quiet) {
   const std::string compiler = jit_compiler();
   std::string key_material = std::string("mbfe ") + gen::generator_version() + "\n" + compiler +
                              "\n" + MBFE_JIT_FLAGS + "\n";
-  if (!model.source_sha256.empty()) {
+  if (!by_sources && !model.source_sha256.empty()) {
     key_material += std::string("fingerprint ") + MBFE_GENERATOR_FINGERPRINT + "\nmodel " + model.name + " " +
                     model.source_sha256 + "\n";
   } else {

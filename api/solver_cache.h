@@ -35,9 +35,11 @@ struct LoadedSolver {
 std::string solver_cache_dir();
 
 /// Generates, compiles (when not cached) and loads the solver of `model`.
-/// Prints one line on stderr about the cache unless `quiet`.
+/// Prints one line on stderr about the cache unless `quiet`. The cache key is
+/// the model file's SHA-256 with the generator's fingerprint, or the generated
+/// sources when `by_sources` (or when the model has no file behind it).
 /// @throws std::runtime_error with the compiler's message when compiling fails
 /// (nothing is left behind in the cache).
-LoadedSolver load_solver(const ir::Model& model, bool quiet);
+LoadedSolver load_solver(const ir::Model& model, bool quiet, bool by_sources = false);
 
 }  // namespace mbfe

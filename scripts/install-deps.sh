@@ -17,6 +17,9 @@ PACKAGES=(
 if [[ "${MBFE_WITH_SUNDIALS:-0}" == 1 ]]; then
   PACKAGES+=(libsundials-dev)                 # CVODE baseline of docs/accuracy-vs-cost.md (pulls MPI, PETSc)
 fi
+if [[ "${MBFE_WITH_SLURM:-0}" == 1 ]]; then
+  PACKAGES+=(slurm-wlm munge)                 # the one-node Slurm of scripts/slurm-local.sh
+fi
 if [[ "${MBFE_WITH_FUZZ:-0}" == 1 ]]; then
   PACKAGES+=(clang libclang-rt-14-dev)        # libFuzzer + sanitizer runtimes
 fi

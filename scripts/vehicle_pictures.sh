@@ -35,8 +35,8 @@ set ylabel "midspan deflection (mm)"
 set xrange [0:30]
 L = 20.0; EI = 2.1e7; P = 9810.0
 infl(s) = (s < 0 || s > L) ? 0 : (s <= L/2 ? P*s*(3*L*L - 4*s*s)/(48*EI) : P*(L-s)*(3*L*L - 4*(L-s)**2)/(48*EI))
-plot "$tmp/force.csv" every ::1 using (20*\$1):(-1000*\$2) with lines lw 2 title "mbfe: dynamic (FE, 40 elements)", \
-     "$tmp/force.csv" every ::1 using (20*\$1):(1000*infl(20*\$1)) with lines dt 2 lw 2 title "static influence line"
+plot "$tmp/force.csv" using (20*\$1):(-1000*\$2) with lines lw 2 title "mbfe: dynamic (FE, 40 elements)", \
+     "$tmp/force.csv" using (20*\$1):(1000*infl(20*\$1)) with lines dt 2 lw 2 title "static influence line"
 
 set output "$out/bridge_moving_mass.png"
 set multiplot layout 2,1 title "bridge\\\_moving\\\_mass: a 1000 kg wheel on a unilateral tyre crossing at 20 m/s (static start)"
@@ -44,11 +44,11 @@ set xrange [0:24]
 set title ""
 set xlabel ""
 set ylabel "deflection under the wheel (mm)"
-plot "$tmp/mass.csv" every ::1 using 2:(1000*column("deflection_tyre")) with lines lw 2 title "deck under the wheel", \
-     "$tmp/mass.csv" every ::1 using 2:(1000*column("deck@10")) with lines lw 1 title "deck at midspan"
+plot "$tmp/mass.csv" using 2:(1000*column("deflection_tyre")) with lines lw 2 title "deck under the wheel", \
+     "$tmp/mass.csv" using 2:(1000*column("deck@10")) with lines lw 1 title "deck at midspan"
 set xlabel "wheel position x (m); the deck ends at 20 m"
 set ylabel "tyre force (N)"
-plot "$tmp/mass.csv" every ::1 using 2:(column("force_tyre")) with lines lw 2 title "force\\\_tyre (compression)"
+plot "$tmp/mass.csv" using 2:(column("force_tyre")) with lines lw 2 title "force\\\_tyre (compression)"
 unset multiplot
 
 set output "$out/bridge_two_axle_vehicle.png"
@@ -56,12 +56,12 @@ set multiplot layout 2,1 title "bridge\\\_two\\\_axle\\\_vehicle: 9 t sprung veh
 set xrange [-8:28]
 set xlabel ""
 set ylabel "deck deflection under the axle (mm)"
-plot "$tmp/truck.csv" every ::1 using (\$2-5+2):(1000*column("deflection_front_deck")) with lines lw 2 title "front axle", \
-     "$tmp/truck.csv" every ::1 using (\$2-5-2):(1000*column("deflection_rear_deck")) with lines lw 2 title "rear axle"
+plot "$tmp/truck.csv" using (\$2-5+2):(1000*column("deflection_front_deck")) with lines lw 2 title "front axle", \
+     "$tmp/truck.csv" using (\$2-5-2):(1000*column("deflection_rear_deck")) with lines lw 2 title "rear axle"
 set xlabel "axle position x (m)"
 set ylabel "tyre force (kN)"
-plot "$tmp/truck.csv" every ::1 using (\$2-5+2):((column("force_front_approach")+column("force_front_deck")+column("force_front_exit"))/1000) with lines lw 2 title "front tyre", \
-     "$tmp/truck.csv" every ::1 using (\$2-5-2):((column("force_rear_approach")+column("force_rear_deck")+column("force_rear_exit"))/1000) with lines lw 2 title "rear tyre"
+plot "$tmp/truck.csv" using (\$2-5+2):((column("force_front_approach")+column("force_front_deck")+column("force_front_exit"))/1000) with lines lw 2 title "front tyre", \
+     "$tmp/truck.csv" using (\$2-5-2):((column("force_rear_approach")+column("force_rear_deck")+column("force_rear_exit"))/1000) with lines lw 2 title "rear tyre"
 unset multiplot
 GNUPLOT
 echo "vehicle_pictures: wrote $out/bridge_moving_force.png $out/bridge_moving_mass.png $out/bridge_two_axle_vehicle.png"

@@ -17,5 +17,6 @@ int cmd_simulate(const Args& args);
 int cmd_modal(const Args& args);
 int cmd_stability(const Args& args);
 int cmd_plot(const Args& args);
+int cmd_sweep(const Args& args);
 
 }  // namespace mbfe::tool

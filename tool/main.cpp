@@ -24,6 +24,7 @@ Commands:
   modal      modal analysis and state-space eigenvalues (the paper's Table 1)
   stability  largest stable step of each integrator, original and adjusted
   plot       plot a results CSV to a PNG (needs gnuplot)
+  sweep      a parameter study: many runs of one model, locally or on Slurm
 
 Example:
   mbfe simulate models/double_pendulum.yaml --t-end 2 --out pendulum.csv
@@ -47,7 +48,8 @@ int main(int argc, char** argv) {
   }
   const std::map<std::string, int (*)(const Args&)> commands = {
       {"generate", cmd_generate}, {"eval", cmd_eval},           {"simulate", cmd_simulate},
-      {"modal", cmd_modal},       {"stability", cmd_stability}, {"plot", cmd_plot}};
+      {"modal", cmd_modal},       {"stability", cmd_stability}, {"plot", cmd_plot},
+      {"sweep", cmd_sweep}};
   const std::string name = argv[1];
   const auto it = commands.find(name);
   if (it == commands.end()) {

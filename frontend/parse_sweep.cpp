@@ -1,0 +1,251 @@
+#include "frontend/parse_sweep.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "frontend/text_guard.h"
+#include "frontend/yaml_reader.h"
+#include "ir/identifiers.h"
+
+namespace mbfe::frontend {
+
+namespace {
+
+using ir::ModelError;
+using ir::SourceLoc;
+
+constexpr long kMaxPoints = 1000000;     // a sweep larger than this is a typo
+constexpr std::size_t kMaxNameLength = 128;
+
+/// The shortest text that reads back as v ("10", "0.0025", "1e-07").
+std::string shortest(double v) {
+  char buf[40];
+  const auto [end, error] = std::to_chars(buf, buf + sizeof buf, v);
+  return error == std::errc() ? std::string(buf, end) : std::to_string(v);
+}
+
+std::vector<std::string> split_path(const std::string& path) {
+  std::vector<std::string> keys;
+  std::string key;
+  std::istringstream in(path);
+  while (std::getline(in, key, '.')) keys.push_back(key);
+  return keys;
+}
+
+/// `template: "{}*t"`: each value put in place of {} (a speed into a motion).
+void apply_template(const MapView& view, ir::SweepVariable& v) {
+  const Field* t = view.find("template");
+  if (!t) return;
+  const std::string text = view.text(*t);
+  const auto at = text.find("{}");
+  if (at == std::string::npos)
+    view.fail(t->value_loc, view.prefixed("template: expected '{}' where each value goes, got '" + shown(text) + "'"));
+  for (std::string& value : v.values) value = text.substr(0, at) + value + text.substr(at + 2);
+}
+
+ir::SweepVariable parse_variable(const MapView& view) {
+  view.allow({"path", "values", "range", "template"});
+  ir::SweepVariable v;
+  const Field& path = view.require("path");
+  v.path = view.text(path);
+  v.loc = path.value_loc;
+  v.keys = split_path(v.path);
+  for (const std::string& k : v.keys)
+    if (k.empty()) view.fail(path.value_loc, view.prefixed("path '" + shown(v.path) + "' has an empty key"));
+  const Field* values = view.find("values");
+  const Field* range = view.find("range");
+  if ((values != nullptr) == (range != nullptr))
+    view.fail(view.loc(), view.prefixed("give either 'values: [...]' or 'range: {from, to, count}'"));
+  if (values) {
+    for (const YAML::Node& item : view.list(*values)) {
+      if (!item.IsScalar())
+        view.fail(location_of(item), view.prefixed("values: expected numbers or strings, got " + describe(item)));
+      v.values.push_back(item.Scalar());
+    }
+    if (v.values.empty()) view.fail(values->value_loc, view.prefixed("values: the list is empty"));
+    apply_template(view, v);
+    return v;
+  }
+  const MapView r = view.sub(*range);
+  r.allow({"from", "to", "count"});
+  const double from = r.number(r.require("from"));
+  const double to = r.number(r.require("to"));
+  const Field& count_field = r.require("count");
+  const long long count = r.whole_number(count_field);
+  if (count < 1 || count > kMaxPoints)
+    r.fail(count_field.value_loc, r.prefixed("range.count must be in 1.." + std::to_string(kMaxPoints)));
+  for (long long k = 0; k < count; ++k) {
+    const double x = count == 1 ? from : from + (to - from) * static_cast<double>(k) / static_cast<double>(count - 1);
+    v.values.push_back(shortest(x));
+  }
+  apply_template(view, v);
+  return v;
+}
+
+ir::SweepCollect parse_collect(const MapView& view) {
+  view.allow({"name", "column", "stat"});
+  ir::SweepCollect c;
+  c.loc = view.loc();
+  c.name = view.identifier(view.require("name"), kMaxNameLength);
+  c.column = view.text(view.require("column"));
+  constexpr ir::SweepStat kStats[] = {ir::SweepStat::kMax,  ir::SweepStat::kMin,     ir::SweepStat::kAbsMax,
+                                      ir::SweepStat::kMean, ir::SweepStat::kRms,     ir::SweepStat::kInitial,
+                                      ir::SweepStat::kFinal};
+  c.stat = kStats[view.choice(view.require("stat"), {"max", "min", "absmax", "mean", "rms", "initial", "final"})];
+  return c;
+}
+
+void parse_simulation(const MapView& view, ir::SweepSimulation& sim) {
+  view.allow({"integrator", "step", "t_end", "probes", "adjust"});
+  if (const Field* f = view.find("integrator")) sim.integrator = view.text(*f);
+  if (const Field* f = view.find("step")) sim.step = view.positive(*f);
+  if (const Field* f = view.find("t_end")) sim.t_end = view.positive(*f);
+  if (const Field* f = view.find("probes")) {
+    for (const YAML::Node& item : view.list(*f)) {
+      if (!item.IsScalar()) view.fail(location_of(item), view.prefixed("probes: expected 'beam@s' strings"));
+      sim.probes.push_back(item.Scalar());
+    }
+  }
+  if (const Field* f = view.find("adjust")) sim.adjust = view.choice(*f, {"on", "off"}) == 0 ? "on" : "off";
+}
+
+/// The node the keys lead to in `root`, or an error naming the first key that does not.
+// yaml-cpp's Node::operator= copies into the node it refers to; reset() is
+// what moves a Node to refer to another one.
+YAML::Node walk(const ir::Sweep& sweep, const ir::SweepVariable& v, YAML::Node root, const std::string& model_path) {
+  YAML::Node node;
+  node.reset(root);
+  std::string where = "the model";
+  for (const std::string& key : v.keys) {
+    if (node.IsSequence()) {
+      YAML::Node found;
+      bool any = false;
+      for (YAML::Node item : node) {
+        if (item.IsMap() && item["name"] && item["name"].IsScalar() && item["name"].Scalar() == key) {
+          found.reset(item);
+          any = true;
+          break;
+        }
+      }
+      if (!any)
+        throw ModelError(sweep.source_path, v.loc,
+                         "path '" + shown(v.path) + "': " + where + " has no item named '" + shown(key) + "' (in " +
+                             model_path + ")");
+      node.reset(found);
+      where = "'" + key + "'";
+      continue;
+    }
+    if (!node.IsMap() || !node[key])
+      throw ModelError(sweep.source_path, v.loc,
+                       "path '" + shown(v.path) + "': " + where + " has no key '" + shown(key) + "' (in " +
+                           model_path + ")");
+    const YAML::Node child = node[key];
+    node.reset(child);
+    where = "'" + key + "'";
+  }
+  if (!node.IsScalar())
+    throw ModelError(sweep.source_path, v.loc,
+                     "path '" + shown(v.path) + "' leads to " + describe(node) + ", not to a single value");
+  return node;
+}
+
+YAML::Node load_model_yaml(const ir::Sweep& sweep, const std::string& model_text) {
+  try {
+    return YAML::Load(model_text);
+  } catch (const YAML::Exception& e) {
+    throw ModelError(sweep_model_path(sweep), {e.mark.line + 1, e.mark.column + 1}, "invalid YAML: " + e.msg);
+  }
+}
+
+}  // namespace
+
+ir::Sweep parse_sweep_text(const std::string& text, const std::string& display_path) {
+  if (auto problem = find_non_text(text)) throw ModelError(display_path, problem->loc, problem->message);
+  if (auto problem = find_excess_structure(text, 64, 100000)) throw ModelError(display_path, problem->loc, problem->message);
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ModelError(display_path, {e.mark.line + 1, e.mark.column + 1}, "invalid YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw ModelError(display_path, {1, 1}, "expected a sweep: a map starting with 'sweep:'");
+  const MapView top(display_path, root, "", "", SourceLoc{1, 1});
+  top.allow({"sweep", "description", "model", "vary", "mode", "simulate", "collect"});
+  ir::Sweep sweep;
+  sweep.source_path = display_path;
+  sweep.name = top.identifier(top.require("sweep"), kMaxNameLength);
+  if (const Field* d = top.find("description")) top.text(*d);
+  const Field& model = top.require("model");
+  sweep.model_path = top.text(model);
+  sweep.model_loc = model.value_loc;
+  const Field& vary = top.require("vary");
+  const std::vector<YAML::Node> items = top.list(vary);
+  if (items.empty()) top.fail(vary.value_loc, "vary: the list is empty (nothing to sweep)");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const MapView view(display_path, items[i], "vary #" + std::to_string(i + 1), "", vary.value_loc);
+    sweep.vary.push_back(parse_variable(view));
+  }
+  if (const Field* mode = top.find("mode")) sweep.zip = top.choice(*mode, {"product", "zip"}) == 1;
+  if (sweep.zip) {
+    for (const ir::SweepVariable& v : sweep.vary)
+      if (v.values.size() != sweep.vary.front().values.size())
+        throw ModelError(display_path, v.loc,
+                         "mode zip: path '" + shown(v.path) + "' has " + std::to_string(v.values.size()) +
+                             " values, the first has " + std::to_string(sweep.vary.front().values.size()));
+  }
+  double points = 1;
+  for (const ir::SweepVariable& v : sweep.vary) points *= static_cast<double>(v.values.size());
+  if (!sweep.zip && points > kMaxPoints)
+    top.fail(vary.value_loc, "vary: " + shortest(points) + " points, more than " + std::to_string(kMaxPoints));
+  if (const Field* sim = top.find("simulate")) parse_simulation(top.sub(*sim), sweep.simulation);
+  if (const Field* collect = top.find("collect")) {
+    const std::vector<YAML::Node> cs = top.list(*collect);
+    for (std::size_t i = 0; i < cs.size(); ++i) {
+      const MapView view(display_path, cs[i], "collect #" + std::to_string(i + 1), "", collect->value_loc);
+      sweep.collect.push_back(parse_collect(view));
+      for (std::size_t j = 0; j + 1 < sweep.collect.size(); ++j)
+        if (sweep.collect[j].name == sweep.collect.back().name)
+          view.fail(view.loc(), view.prefixed("duplicate collect name '" + sweep.collect.back().name + "'"));
+    }
+  }
+  return sweep;
+}
+
+ir::Sweep load_sweep_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ModelError(path, {}, "cannot read the sweep file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_sweep_text(text.str(), path);
+}
+
+std::string sweep_model_path(const ir::Sweep& sweep) {
+  const std::filesystem::path model(sweep.model_path);
+  if (model.is_absolute()) return model.string();
+  return (std::filesystem::path(sweep.source_path).parent_path() / model).lexically_normal().string();
+}
+
+void check_sweep_paths(const ir::Sweep& sweep, const std::string& model_text) {
+  const YAML::Node root = load_model_yaml(sweep, model_text);
+  for (const ir::SweepVariable& v : sweep.vary) walk(sweep, v, root, sweep_model_path(sweep));
+}
+
+std::string point_model_text(const ir::Sweep& sweep, const std::string& model_text, long i) {
+  YAML::Node root = YAML::Clone(load_model_yaml(sweep, model_text));
+  const std::vector<int> idx = sweep.indices(i);
+  for (std::size_t k = 0; k < sweep.vary.size(); ++k) {
+    YAML::Node node = walk(sweep, sweep.vary[k], root, sweep_model_path(sweep));
+    node = sweep.vary[k].values[static_cast<std::size_t>(idx[k])];
+  }
+  YAML::Emitter out;
+  out << root;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace mbfe::frontend

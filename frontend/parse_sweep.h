@@ -1,0 +1,30 @@
+// Sweep files (docs/sweeps.md) into ir::Sweep, and the model file of each
+// point: the base model's YAML with the point's values put in at their paths.
+#pragma once
+
+#include <string>
+
+#include "ir/model_error.h"
+#include "ir/sweep.h"
+
+namespace mbfe::frontend {
+
+/// Reads and validates a sweep file. @throws ir::ModelError at the offending
+/// key or value.
+ir::Sweep load_sweep_file(const std::string& path);
+ir::Sweep parse_sweep_text(const std::string& text, const std::string& display_path);
+
+/// The model file a sweep varies: its path as given, resolved against the
+/// sweep file's folder when relative.
+std::string sweep_model_path(const ir::Sweep& sweep);
+
+/// Checks that every `vary` path names an existing key of the model text.
+/// @throws ir::ModelError at the path in the sweep file ("beam 'deck' has no
+/// key 'dampin'", "no body named 'cart'").
+void check_sweep_paths(const ir::Sweep& sweep, const std::string& model_text);
+
+/// The model text of point `i` (0 <= i < sweep.points()): the base model with
+/// each varied key set to the point's value, written out as YAML.
+std::string point_model_text(const ir::Sweep& sweep, const std::string& model_text, long i);
+
+}  // namespace mbfe::frontend

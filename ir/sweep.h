@@ -1,0 +1,58 @@
+// A parameter study: one model file, some of its values varied, each point
+// simulated and reduced to a few statistics (docs/sweeps.md). The front end
+// fills it from a sweep file (frontend/parse_sweep.h); `mbfe sweep` runs it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ir/source_loc.h"
+
+namespace mbfe::ir {
+
+/// One varied value: a key of the model file addressed by names
+/// (`bodies.carriage.joint.motion`), and the values it takes, as YAML scalars.
+struct SweepVariable {
+  std::string path;                 // as written
+  std::vector<std::string> keys;    // path split at '.'
+  std::vector<std::string> values;  // each a YAML scalar (number or string)
+  SourceLoc loc;                    // of the path
+};
+
+enum class SweepStat { kMax, kMin, kAbsMax, kMean, kRms, kInitial, kFinal };
+
+/// One statistic of one output column over a run: a column of the summary.
+struct SweepCollect {
+  std::string name;    // summary column, an identifier
+  std::string column;  // CSV column of the run, e.g. "deck@10.0"
+  SweepStat stat = SweepStat::kMax;
+  SourceLoc loc;
+};
+
+/// The `simulate:` block: what `mbfe simulate` would take as flags.
+struct SweepSimulation {
+  std::string integrator;  // empty: the model's
+  double step = 0.0;       // s; 0: the model's
+  double t_end = 0.0;      // s; 0: the model's
+  std::vector<std::string> probes;  // "beam@s"
+  std::string adjust;      // "", "on" or "off"
+};
+
+struct Sweep {
+  std::string name;          // identifier
+  std::string source_path;   // the sweep file, as given
+  std::string model_path;    // the model file, relative to the sweep file's folder when not absolute
+  SourceLoc model_loc;
+  std::vector<SweepVariable> vary;
+  bool zip = false;          // false: every combination (product); true: the i-th values together
+  SweepSimulation simulation;
+  std::vector<SweepCollect> collect;
+
+  /// Number of points: the product of the value counts, or (zip) the common count.
+  long points() const;
+  /// The value index of each variable at point `i` (0-based; the last
+  /// variable varies fastest in a product).
+  std::vector<int> indices(long i) const;
+};
+
+}  // namespace mbfe::ir

@@ -1,0 +1,104 @@
+// Sweep files: the points they describe (product and zip, ranges, templates),
+// the model file of a point, and bad files refused at their file:line:col.
+#include "frontend/parse_sweep.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "frontend/parse_model.h"
+
+namespace mbfe::frontend {
+namespace {
+
+const std::string kModel = R"(model: m
+bodies:
+  - name: cart
+    parent: ground
+    joint: {type: prismatic, axis: [1, 0], motion: "20*t"}
+    mass: 1.0
+    inertia: 0
+  - name: arm
+    parent: cart
+    joint: {type: revolute}
+    mass: 2.0
+    inertia: 0.1
+beams:
+  - name: deck
+    origin: [0, 0]
+    length: 10.0
+    elements: 10
+    section: {area: 0.01, inertia: 1.0e-4}
+    material: {youngs_modulus: 2.1e11, density: 7850}
+    supports: [{at: 0.0, type: pinned}, {at: 10.0, type: pinned}]
+    damping: {rayleigh: {alpha: 0.0, beta: 0.0}}
+)";
+
+std::string sweep_text(const std::string& vary, const std::string& extra = "") {
+  return "sweep: s\nmodel: m.yaml\nvary:\n" + vary + extra;
+}
+
+TEST(ParseSweep, ProductOfRangeAndValuesWithTemplate) {
+  const ir::Sweep s = parse_sweep_text(
+      sweep_text("  - {path: bodies.cart.joint.motion, range: {from: 10, to: 30, count: 3}, template: \"{}*t\"}\n"
+                 "  - {path: beams.deck.damping.rayleigh.alpha, values: [0.0, 0.5]}\n"),
+      "s.yaml");
+  ASSERT_EQ(s.points(), 6);
+  EXPECT_EQ(s.vary[0].values, (std::vector<std::string>{"10*t", "20*t", "30*t"}));
+  EXPECT_EQ(s.indices(0), (std::vector<int>{0, 0}));
+  EXPECT_EQ(s.indices(1), (std::vector<int>{0, 1}));  // the last variable varies fastest
+  EXPECT_EQ(s.indices(5), (std::vector<int>{2, 1}));
+  // Point 3: speed 20, alpha 0.5, in a model that parses to exactly that.
+  const ir::Model m = parse_model_text(point_model_text(s, kModel, 3), "p.yaml");
+  EXPECT_EQ(m.bodies[0].joint.motion->evaluate(2.0), 40.0);
+  EXPECT_EQ(m.beams[0].rayleigh_alpha, 0.5);
+  EXPECT_EQ(m.bodies[1].mass, 2.0);  // the rest as it was
+  EXPECT_EQ(sweep_model_path(s), "m.yaml");
+}
+
+TEST(ParseSweep, ZipTakesTheIthValuesTogether) {
+  const ir::Sweep s = parse_sweep_text(sweep_text("  - {path: bodies.arm.mass, values: [1, 2, 3]}\n"
+                                                  "  - {path: bodies.arm.inertia, values: [0.1, 0.2, 0.3]}\n",
+                                                  "mode: zip\n"),
+                                       "s.yaml");
+  ASSERT_EQ(s.points(), 3);
+  const ir::Model m = parse_model_text(point_model_text(s, kModel, 2), "p.yaml");
+  EXPECT_EQ(m.bodies[1].mass, 3.0);
+  EXPECT_EQ(m.bodies[1].inertia, 0.3);
+}
+
+void expect_error(const std::string& text, const std::string& where, const std::string& what, bool paths = false) {
+  try {
+    const ir::Sweep s = parse_sweep_text(text, "s.yaml");
+    if (paths) check_sweep_paths(s, kModel);
+    FAIL() << "accepted: " << text;
+  } catch (const ir::ModelError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("s.yaml:" + where + ": ", 0), 0u) << msg;
+    EXPECT_NE(msg.find(what), std::string::npos) << msg;
+  }
+}
+
+TEST(ParseSweep, BadFilesAreRefusedWhereTheyAreWrong) {
+  expect_error(sweep_text("  - {path: bodies.carts.joint.motion, values: [\"1*t\"]}\n"), "4:12",
+               "path 'bodies.carts.joint.motion': 'bodies' has no item named 'carts'", true);
+  expect_error(sweep_text("  - {path: beams.deck.damping.rayleigh.alpah, values: [1]}\n"), "4:12",
+               "'rayleigh' has no key 'alpah'", true);
+  expect_error(sweep_text("  - {path: beams.deck.supports, values: [1]}\n"), "4:12", "not to a single value", true);
+  expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1, 2]}\n  - {path: bodies.arm.inertia, values: [1]}\n",
+                          "mode: zip\n"),
+               "5:12", "mode zip: path 'bodies.arm.inertia' has 1 values, the first has 2");
+  expect_error(sweep_text("  - {path: bodies.arm.mass, values: []}\n"), "4:37", "values: the list is empty");
+  expect_error(sweep_text("  - {path: bodies.arm.mass, range: {from: 1, to: 2, count: 0}}\n"), "4:60",
+               "range.count must be in 1..");
+  expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1], range: {from: 1, to: 2, count: 2}}\n"), "4:5",
+               "give either 'values: [...]' or 'range: {from, to, count}'");
+  expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1], template: \"t\"}\n"), "4:52",
+               "template: expected '{}' where each value goes");
+  expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "collect:\n  - {name: a, column: x, stat: median}\n"),
+               "6:32", "expected one of max, min, absmax, mean, rms, initial, final");
+  expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "speed: 3\n"), "5:1", "speed");
+}
+
+}  // namespace
+}  // namespace mbfe::frontend

@@ -1,0 +1,278 @@
+#include "tool/sweep_point.h"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "api/mbfe.h"
+#include "frontend/parse_sweep.h"
+#include "tool/csv_output.h"
+
+namespace mbfe::tool {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Written to a temporary name and renamed: a reader never sees half a file.
+void write_atomically(const fs::path& p, const std::string& text) {
+  const fs::path tmp = p.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
+  }
+  fs::rename(tmp, p);
+}
+
+/// The run's rows into run.csv, and the statistics of the collected columns.
+class StatsObserver : public runtime::SimulationObserver {
+ public:
+  StatsObserver(const ir::Sweep& sweep, CsvOutput& csv) : sweep_(sweep), csv_(csv) {}
+
+  void begin(const runtime::OutputLayout& layout) override {
+    csv_.header(layout.columns);
+    for (const ir::SweepCollect& c : sweep_.collect) {
+      int index = -1;
+      for (std::size_t k = 0; k < layout.columns.size(); ++k)
+        if (layout.columns[k] == c.column) index = static_cast<int>(k);
+      if (index < 0) {
+        std::string names;
+        for (const std::string& n : layout.columns) names += (names.empty() ? "" : ", ") + n;
+        throw runtime::InvalidInput("collect '" + c.name + "': the run has no column '" + c.column +
+                                    "' (its columns: " + names + ")");
+      }
+      columns_.push_back(index);
+    }
+    acc_.assign(columns_.size(), Acc{});
+  }
+
+  void row(const runtime::OutputRow& row) override {
+    csv_.row(row.values.data(), row.values.size());
+    for (std::size_t k = 0; k < columns_.size(); ++k) {
+      const double v = row.values[static_cast<std::size_t>(columns_[k])];
+      Acc& a = acc_[k];
+      a.max = std::max(a.max, v);
+      a.min = std::min(a.min, v);
+      a.absmax = std::max(a.absmax, std::abs(v));
+      a.sum += v;
+      a.sum2 += v * v;
+      if (a.n == 0) a.first = v;
+      a.last = v;
+      ++a.n;
+    }
+  }
+
+  std::vector<double> stats() const {
+    std::vector<double> out;
+    for (std::size_t k = 0; k < sweep_.collect.size(); ++k) {
+      if (k >= acc_.size() || acc_[k].n == 0) {
+        out.push_back(kNan);
+        continue;
+      }
+      const Acc& a = acc_[k];
+      switch (sweep_.collect[k].stat) {
+        case ir::SweepStat::kMax: out.push_back(a.max); break;
+        case ir::SweepStat::kMin: out.push_back(a.min); break;
+        case ir::SweepStat::kAbsMax: out.push_back(a.absmax); break;
+        case ir::SweepStat::kMean: out.push_back(a.sum / a.n); break;
+        case ir::SweepStat::kRms: out.push_back(std::sqrt(a.sum2 / a.n)); break;
+        case ir::SweepStat::kInitial: out.push_back(a.first); break;
+        case ir::SweepStat::kFinal: out.push_back(a.last); break;
+      }
+    }
+    return out;
+  }
+
+ private:
+  struct Acc {
+    double max = -std::numeric_limits<double>::infinity();
+    double min = std::numeric_limits<double>::infinity();
+    double absmax = 0.0, sum = 0.0, sum2 = 0.0, first = kNan, last = kNan;
+    long n = 0;
+  };
+  const ir::Sweep& sweep_;
+  CsvOutput& csv_;
+  std::vector<int> columns_;
+  std::vector<Acc> acc_;
+};
+
+runtime::SimulationRequest request_of(const ir::Sweep& sweep, const ir::Model& model) {
+  const ir::SweepSimulation& s = sweep.simulation;
+  runtime::SimulationRequest r;
+  r.integrator = runtime::parse_integrator(s.integrator.empty() ? model.simulation.integrator : s.integrator);
+  r.step = s.step > 0 ? s.step : model.simulation.step;
+  r.t_end = s.t_end > 0 ? s.t_end : model.simulation.t_end;
+  for (const std::string& p : s.probes) r.probes.push_back(runtime::parse_probe(p));
+  if (!s.adjust.empty()) r.adjust = s.adjust == "on";
+  r.handle_sigint = false;
+  return r;
+}
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+void write_result(const fs::path& dir, const ir::Sweep& sweep, const PointResult& r) {
+  nlohmann::json j;
+  j["point"] = r.point;
+  j["status"] = r.done ? "done" : "failed";
+  j["exit_status"] = r.exit_status;
+  j["message"] = r.message;
+  j["wall_seconds"] = r.wall_seconds;
+  nlohmann::json stats = nlohmann::json::object();
+  for (std::size_t k = 0; k < sweep.collect.size(); ++k) stats[sweep.collect[k].name] = number_or_null(r.stats[k]);
+  j["stats"] = stats;
+  write_atomically(dir / "result.json", j.dump(2) + "\n");
+}
+
+/// A CSV field: quoted when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::string number_text(double v) {
+  if (!std::isfinite(v)) return "";
+  std::ostringstream os;
+  os.precision(17);
+  os << v;
+  return os.str();
+}
+
+}  // namespace
+
+std::string point_dir(const std::string& out_dir, long i) {
+  return (fs::path(out_dir) / "points" / std::to_string(i)).string();
+}
+
+PointResult run_sweep_point(const ir::Sweep& sweep, const std::string& model_text, const std::string& out_dir,
+                            long i) {
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path dir = point_dir(out_dir, i);
+  fs::create_directories(dir);
+  PointResult r;
+  r.point = i;
+  r.stats.assign(sweep.collect.size(), kNan);
+  const std::string text = frontend::point_model_text(sweep, model_text, i);
+  const fs::path model_file = dir / "model.yaml";
+  write_atomically(model_file, text);
+  try {
+    LoadOptions options;
+    options.quiet = true;
+    options.cache_by_sources = true;
+    const Model model = Model::parse(text, model_file.string(), options);
+    CsvOutput csv((dir / "run.csv").string());
+    StatsObserver observer(sweep, csv);
+    const runtime::SimulationReport report = model.simulate(request_of(sweep, model.ir()), observer);
+    csv.flush();
+    r.stats = observer.stats();
+    r.done = report.message.empty();
+    r.exit_status = r.done ? 0 : 3;
+    r.message = report.message;
+  } catch (const ir::ModelError& e) {
+    r.exit_status = 2;
+    r.message = e.what();
+  } catch (const runtime::InvalidInput& e) {
+    r.exit_status = 2;
+    r.message = e.what();
+  } catch (const std::exception& e) {
+    r.exit_status = 1;
+    r.message = e.what();
+  }
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_result(dir, sweep, r);
+  return r;
+}
+
+std::optional<PointResult> read_point_result(const ir::Sweep& sweep, const std::string& model_text,
+                                             const std::string& out_dir, long i) {
+  const fs::path dir = point_dir(out_dir, i);
+  if (!fs::exists(dir / "result.json") || !fs::exists(dir / "model.yaml")) return std::nullopt;
+  if (slurp(dir / "model.yaml") != frontend::point_model_text(sweep, model_text, i)) return std::nullopt;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(slurp(dir / "result.json"));
+    PointResult r;
+    r.point = i;
+    r.done = j.at("status") == "done";
+    r.exit_status = j.at("exit_status");
+    r.message = j.at("message");
+    r.wall_seconds = j.at("wall_seconds");
+    for (const ir::SweepCollect& c : sweep.collect) {
+      const auto& v = j.at("stats").at(c.name);
+      r.stats.push_back(v.is_number() ? v.get<double>() : kNan);
+    }
+    return r;
+  } catch (const std::exception&) {
+    return std::nullopt;  // unreadable: the point runs again
+  }
+}
+
+SweepCounts write_summary(const ir::Sweep& sweep, const std::string& model_text, const std::string& out_dir) {
+  SweepCounts counts;
+  std::ostringstream csv;
+  csv << "point";
+  for (const ir::SweepVariable& v : sweep.vary) csv << "," << csv_field(v.path);
+  csv << ",status,exit_status";
+  for (const ir::SweepCollect& c : sweep.collect) csv << "," << c.name;
+  csv << ",wall_s,message\n";
+  nlohmann::json points = nlohmann::json::array();
+  for (long i = 0; i < sweep.points(); ++i) {
+    const std::optional<PointResult> r = read_point_result(sweep, model_text, out_dir, i);
+    const std::vector<int> idx = sweep.indices(i);
+    nlohmann::json p;
+    p["point"] = i;
+    nlohmann::json values = nlohmann::json::object();
+    csv << i;
+    for (std::size_t k = 0; k < sweep.vary.size(); ++k) {
+      const std::string& value = sweep.vary[k].values[static_cast<std::size_t>(idx[k])];
+      csv << "," << csv_field(value);
+      values[sweep.vary[k].path] = value;
+    }
+    p["values"] = values;
+    const std::string status = !r ? "missing" : (r->done ? "done" : "failed");
+    (r ? (r->done ? counts.done : counts.failed) : counts.missing) += 1;
+    csv << "," << status << "," << (r ? std::to_string(r->exit_status) : "");
+    nlohmann::json stats = nlohmann::json::object();
+    for (std::size_t k = 0; k < sweep.collect.size(); ++k) {
+      const double v = r ? r->stats[k] : kNan;
+      csv << "," << number_text(v);
+      stats[sweep.collect[k].name] = number_or_null(v);
+    }
+    csv << "," << (r ? number_text(r->wall_seconds) : "") << "," << csv_field(r ? r->message : "") << "\n";
+    p["status"] = status;
+    p["exit_status"] = r ? nlohmann::json(r->exit_status) : nlohmann::json(nullptr);
+    p["stats"] = stats;
+    p["message"] = r ? r->message : "";
+    p["model"] = (fs::path("points") / std::to_string(i) / "model.yaml").string();
+    points.push_back(p);
+  }
+  nlohmann::json summary;
+  summary["sweep"] = sweep.name;
+  summary["model"] = sweep.model_path;
+  summary["mode"] = sweep.zip ? "zip" : "product";
+  summary["points"] = points;
+  summary["done"] = counts.done;
+  summary["failed"] = counts.failed;
+  summary["missing"] = counts.missing;
+  fs::create_directories(out_dir);
+  write_atomically(fs::path(out_dir) / "summary.csv", csv.str());
+  write_atomically(fs::path(out_dir) / "summary.json", summary.dump(2) + "\n");
+  return counts;
+}
+
+}  // namespace mbfe::tool

@@ -1,0 +1,45 @@
+// One point of a sweep (docs/sweeps.md): its model file written out, the run,
+// its statistics, and its result file; and the summary of all of them. Every
+// point lives in DIR/points/<i>/ (model.yaml, run.csv, result.json), so that
+// any run can be repeated by hand, and a result present means the point has
+// been tried.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ir/sweep.h"
+
+namespace mbfe::tool {
+
+struct PointResult {
+  long point = 0;
+  bool done = false;          // completed; false: failed (see exit_status, message)
+  int exit_status = 0;        // what `mbfe simulate` would have returned: 0, 1, 2 or 3
+  std::string message;        // why it failed; empty when done
+  std::vector<double> stats;  // one per collect entry; NaN when not computed
+  double wall_seconds = 0.0;
+};
+
+std::string point_dir(const std::string& out_dir, long i);
+
+/// Runs point i: writes its model.yaml, run.csv and result.json. Never throws
+/// for a failure of the point itself (bad combination, divergence): that is
+/// the result.
+PointResult run_sweep_point(const ir::Sweep& sweep, const std::string& model_text, const std::string& out_dir,
+                            long i);
+
+/// The result file of point i, if there is one for the current model text of
+/// that point (a result of an older version of the sweep does not count).
+std::optional<PointResult> read_point_result(const ir::Sweep& sweep, const std::string& model_text,
+                                             const std::string& out_dir, long i);
+
+struct SweepCounts {
+  long done = 0, failed = 0, missing = 0;
+};
+
+/// Writes DIR/summary.csv and DIR/summary.json from the result files present.
+SweepCounts write_summary(const ir::Sweep& sweep, const std::string& model_text, const std::string& out_dir);
+
+}  // namespace mbfe::tool

@@ -1,0 +1,31 @@
+// `mbfe sweep --slurm`: the sweep as a Slurm job array, one task per point
+// (each `mbfe sweep SWEEP --out DIR --point $SLURM_ARRAY_TASK_ID`), and a
+// collect job that depends on it and writes the summary (docs/sweeps.md).
+#pragma once
+
+#include <string>
+
+namespace mbfe::tool {
+
+struct SlurmOptions {
+  std::string partition;  // empty: the cluster's default
+  std::string time;       // per task, Slurm's format ("10:00"); empty: the default
+  long array_limit = 0;   // at most this many tasks at once; 0: no limit
+  bool dry_run = false;   // write the scripts, do not submit
+};
+
+struct SlurmSubmission {
+  std::string points_script, collect_script;  // paths written
+  std::string array_job, collect_job;         // job ids (empty on a dry run)
+};
+
+/// Writes DIR/slurm/points.sbatch and DIR/slurm/collect.sbatch for `points`
+/// tasks and, unless a dry run, submits them with sbatch (the collect job
+/// --dependency=afterany on the array). `mbfe` and the sweep file are given
+/// as absolute paths; DIR must be on a filesystem the nodes share, and the
+/// solver cache is DIR/cache. @throws std::runtime_error when sbatch fails,
+/// with its message.
+SlurmSubmission submit_slurm_sweep(const std::string& mbfe, const std::string& sweep_file, const std::string& out_dir,
+                                   const std::string& sweep_name, long points, const SlurmOptions& options);
+
+}  // namespace mbfe::tool
