@@ -5,6 +5,7 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 # The main job needs the tool only: no tests, no benchmarks (about half the build).
 scripts/build.sh -DMBFE_BUILD_TESTS=OFF -DMBFE_BUILD_BENCHMARKS=OFF
+scripts/install-python.sh
 mkdir -p out
 echo
 echo "== The double pendulum: generated, compiled, simulated =="
@@ -18,5 +19,8 @@ if build/bin/mbfe stability --help >/dev/null 2>&1; then
   echo "== Largest stable steps, original and with the modal adjustment of damping =="
   build/bin/mbfe stability models/paper_beam.yaml
 fi
+echo
+echo "== A 1000 kg wheel crossing a 20 m bridge at 20 m/s, from Python =="
+/usr/bin/python3 examples/python/bridge_crossing.py out
 echo
 echo "Results in out/. Next: README.md, 'build/bin/mbfe --help'."

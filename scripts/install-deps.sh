@@ -12,6 +12,8 @@ PACKAGES=(
   nlohmann-json3-dev                          # JSON output
   libgtest-dev libgmock-dev libbenchmark-dev  # tests and benchmarks
   gnuplot-nox                                 # pictures (mbfe plot, mbfe modal --plot)
+  python3-dev pybind11-dev python3-numpy      # the Python module (docs/python.md)
+  python3-matplotlib                          # its example's picture (examples/python/)
 )
 # Optional extras, heavy or only for some jobs:
 if [[ "${MBFE_WITH_SUNDIALS:-0}" == 1 ]]; then

@@ -24,7 +24,7 @@ cmake -S . -B "$build_dir" \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" \
-  -DMBFE_BUILD_BENCHMARKS=OFF >/dev/null
+  -DMBFE_BUILD_BENCHMARKS=OFF -DMBFE_BUILD_PYTHON=OFF >/dev/null
 # The sanitizer settings hold for the build too: it runs the instrumented
 # `mbfe generate` for the solvers of the test suite (mbfe_add_model).
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
@@ -37,6 +37,8 @@ export MBFE_CACHE_DIR="$PWD/$build_dir/test-cache"
 if [[ -n "${MBFE_ASAN_GTEST_FILTER:-}" ]]; then
   export GTEST_FILTER="-${MBFE_ASAN_GTEST_FILTER}"
 fi
+# The Python module is not built here: an instrumented extension needs the
+# sanitizer runtime preloaded into the interpreter; the normal run tests it.
 # downstream_cmake_project is left out: it builds a separate CMake project
 # against this build's exported static libraries, and the instrumented ones
 # need the consumer to link the sanitizer runtimes, which the build-tree

@@ -1,0 +1,236 @@
+// The Python module `mbfe` (pybind11): the public C++ API (api/mbfe.h) with
+// numpy arrays in and out (docs/python.md).
+//
+//   import mbfe
+//   m = mbfe.load("models/paper_platform.yaml")
+//   r = m.simulate(integrator="rk4", step=2e-5, t_end=1.0, probes=["beam1@0.35"])
+//   r.t, r["beam1@0.35"], r.status, r.message
+//
+// Bad input raises mbfe.ModelError (a ValueError) with the same
+// `file:line:col: what is wrong` message as the command line.
+#include <pybind11/complex.h>
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "api/mbfe.h"
+
+namespace py = pybind11;
+
+namespace {
+
+using mbfe::Model;
+namespace rt = mbfe::runtime;
+
+/// The rows of a run, column by column.
+class Columns : public rt::SimulationObserver {
+ public:
+  void begin(const rt::OutputLayout& layout) override {
+    columns = layout.columns;
+    units = layout.units;
+    data.assign(columns.size(), {});
+  }
+  void row(const rt::OutputRow& row) override {
+    for (std::size_t k = 0; k < row.values.size(); ++k) data[k].push_back(row.values[k]);
+  }
+  void notice(const std::string& text) override { notices.push_back(text); }
+  std::vector<std::string> columns, units, notices;
+  std::vector<std::vector<double>> data;
+};
+
+/// What simulate() returns: t, the columns by name, the status.
+struct Result {
+  std::vector<std::string> columns, units, notices;
+  std::map<std::string, py::array_t<double>> arrays;
+  std::string status, message, variant;
+  long steps = 0;
+  double t_reached = 0.0, wall_seconds = 0.0;
+  py::list springs;
+};
+
+const char* status_name(rt::SimulationStatus s) {
+  switch (s) {
+    case rt::SimulationStatus::kCompleted: return "completed";
+    case rt::SimulationStatus::kDiverged: return "diverged";
+    case rt::SimulationStatus::kInterrupted: return "interrupted";
+    case rt::SimulationStatus::kFailed: return "failed";
+  }
+  return "?";
+}
+
+py::object limit_value(const rt::StepLimit& l) {
+  if (l.kind == rt::StepLimit::Kind::kFinite) return py::float_(l.h);
+  if (l.kind == rt::StepLimit::Kind::kUnconditional) return py::float_(std::numeric_limits<double>::infinity());
+  return py::float_(0.0);
+}
+
+Result simulate(const Model& m, const std::string& integrator, std::optional<double> step,
+                std::optional<double> t_end, std::optional<bool> adjust, const std::vector<std::string>& probes,
+                long every, std::optional<bool> static_start, const std::string& formulation) {
+  rt::SimulationRequest r;
+  r.integrator = rt::parse_integrator(integrator.empty() ? m.ir().simulation.integrator : integrator);
+  r.step = step.value_or(m.ir().simulation.step);
+  r.t_end = t_end.value_or(m.ir().simulation.t_end);
+  r.adjust = adjust;
+  for (const std::string& p : probes) r.probes.push_back(rt::parse_probe(p));
+  r.every = every;
+  r.static_start = static_start;
+  if (formulation == "augmented") r.formulation = rt::CoupledFormulation::kAugmented;
+  else if (formulation != "partitioned") throw rt::InvalidInput("formulation: partitioned or augmented, got '" + formulation + "'");
+  r.handle_sigint = false;
+  Columns rows;
+  rt::SimulationReport report;
+  {
+    py::gil_scoped_release release;  // a long run does not hold up other Python threads
+    report = m.simulate(r, rows);
+  }
+  Result out;
+  out.columns = rows.columns;
+  out.units = rows.units;
+  out.notices = rows.notices;
+  for (std::size_t k = 0; k < rows.columns.size(); ++k) {
+    py::array_t<double> a(static_cast<py::ssize_t>(rows.data[k].size()));
+    std::copy(rows.data[k].begin(), rows.data[k].end(), a.mutable_data());
+    out.arrays[rows.columns[k]] = a;
+  }
+  out.status = status_name(report.run.status);
+  out.message = report.message;
+  out.variant = report.variant;
+  out.steps = static_cast<long>(report.run.steps);
+  out.t_reached = report.run.t;
+  out.wall_seconds = report.run.wall_seconds;
+  for (const rt::SpringContactTally& s : report.springs) {
+    py::dict d;
+    d["name"] = s.name;
+    d["lift_offs"] = s.lift_offs;
+    d["time_off"] = s.time_off;
+    out.springs.append(d);
+  }
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(mbfe, module) {
+  module.doc() = "mbfe: symbolic multibody + finite-element beam modeler (docs/python.md)";
+  static py::exception<mbfe::ir::ModelError> model_error(module, "ModelError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const mbfe::ir::ModelError& e) {
+      model_error(e.what());
+    } catch (const rt::InvalidInput& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+
+  py::class_<Result>(module, "Result", "A run: t and the columns by name (numpy arrays), the status.")
+      .def_readonly("columns", &Result::columns)
+      .def_readonly("units", &Result::units)
+      .def_readonly("status", &Result::status, "completed, diverged, failed or interrupted")
+      .def_readonly("message", &Result::message, "empty for a completed run, else why it ended")
+      .def_readonly("variant", &Result::variant)
+      .def_readonly("steps", &Result::steps)
+      .def_readonly("t_reached", &Result::t_reached)
+      .def_readonly("wall_seconds", &Result::wall_seconds)
+      .def_readonly("notices", &Result::notices)
+      .def_readonly("springs", &Result::springs, "per slider_spring: name, lift_offs, time_off")
+      .def_property_readonly("t", [](const Result& r) { return r.arrays.at("t"); })
+      .def("__getitem__", [](const Result& r, const std::string& name) {
+        const auto it = r.arrays.find(name);
+        if (it == r.arrays.end()) throw py::key_error("no column '" + name + "'");
+        return it->second;
+      })
+      .def("__contains__", [](const Result& r, const std::string& name) { return r.arrays.count(name) > 0; })
+      .def("__repr__", [](const Result& r) {
+        return "<mbfe.Result " + r.status + ", " + std::to_string(r.steps) + " steps, " +
+               std::to_string(r.columns.size()) + " columns>";
+      });
+
+  py::class_<Model>(module, "Model", "A model with its solver (api/mbfe.h).")
+      .def_property_readonly("name", [](const Model& m) { return m.ir().name; })
+      .def_property_readonly("kind", [](const Model& m) {
+        switch (m.kind()) {
+          case rt::ModelKind::kRigid: return "rigid";
+          case rt::ModelKind::kBeams: return "beams";
+          case rt::ModelKind::kCoupled: return "coupled";
+        }
+        return "?";
+      })
+      .def_property_readonly("coordinates", [](const Model& m) {
+        std::vector<std::string> names;
+        for (const auto& b : m.ir().bodies) names.push_back(b.name);
+        return names;
+      })
+      .def(
+          "eval",
+          [](const Model& m, std::vector<double> q, std::vector<double> qd, double t, std::vector<double> qc,
+             std::vector<double> qcd) {
+            mbfe::State s;
+            s.q = std::move(q);
+            s.qd = std::move(qd);
+            s.qc = std::move(qc);
+            s.qcd = std::move(qcd);
+            s.t = t;
+            const mbfe::Evaluation e = m.evaluate(s);
+            py::dict d;
+            d["M"] = e.M;
+            d["F"] = e.F;
+            d["Q"] = e.Q;
+            if (e.has_constraints) {
+              d["Phi"] = e.phi;
+              d["Jb"] = e.jb;
+              d["Jc"] = e.jc;
+              d["gamma"] = e.gamma;
+            }
+            return d;
+          },
+          py::arg("q"), py::arg("qd"), py::arg("t") = 0.0, py::arg("qc") = std::vector<double>{},
+          py::arg("qcd") = std::vector<double>{},
+          "M, F, Q (and the constraints Phi, Jb, Jc, gamma) at a state, as numpy arrays")
+      .def("simulate", &simulate, py::arg("integrator") = "", py::arg("step") = py::none(),
+           py::arg("t_end") = py::none(), py::arg("adjust") = py::none(),
+           py::arg("probes") = std::vector<std::string>{}, py::arg("every") = 0,
+           py::arg("static_start") = py::none(), py::arg("formulation") = "partitioned",
+           "Integrates the model; missing arguments come from its simulation block")
+      .def(
+          "spectrum",
+          [](const Model& m, bool adjusted) {
+            const rt::ModelSpectrum s = m.spectrum(adjusted);
+            Eigen::VectorXcd ev(static_cast<Eigen::Index>(s.full.eigenvalues.size()));
+            for (std::size_t k = 0; k < s.full.eigenvalues.size(); ++k) ev[static_cast<Eigen::Index>(k)] = s.full.eigenvalues[k];
+            return ev;
+          },
+          py::arg("adjusted") = false, "the eigenvalues (1/s) of the linearised model, complex numpy array")
+      .def(
+          "step_limits",
+          [](const Model& m) {
+            py::dict d;
+            for (const rt::StepLimitRow& row : m.step_limits()) {
+              py::dict limits;
+              limits["original"] = limit_value(row.original);
+              if (row.adjusted) limits["adjusted"] = limit_value(*row.adjusted);
+              d[py::str(row.integrator.name)] = limits;
+            }
+            return d;
+          },
+          "largest stable step (s) per integrator; inf: unconditional, 0: none");
+
+  module.def(
+      "load", [](const std::string& path, bool quiet) {
+        mbfe::LoadOptions o;
+        o.quiet = quiet;
+        return Model::load(path, o);
+      },
+      py::arg("path"), py::arg("quiet") = true, "Reads a model file and gets its solver (compiled and cached on first use)");
+  module.def(
+      "parse", [](const std::string& text, const std::string& name) { return Model::parse(text, name); },
+      py::arg("text"), py::arg("name") = "<string>", "A model from YAML text");
+  module.attr("__version__") = MBFE_GENERATOR_VERSION;
+}

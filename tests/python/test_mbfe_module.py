@@ -1,0 +1,97 @@
+"""The Python module against the command line on the same models: the same
+numbers from `mbfe.load(...).simulate/eval/step_limits` as from `mbfe
+simulate/eval/stability`, and the same file:line:col message for bad input."""
+import csv
+import json
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+
+import mbfe
+
+SOURCE = os.environ.get("MBFE_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+CLI = os.environ.get("MBFE_CLI", os.path.join(SOURCE, "build", "bin", "mbfe"))
+
+
+def model(name):
+    return os.path.join(SOURCE, "models", name)
+
+
+def cli(*args):
+    return subprocess.run([CLI, *args], capture_output=True, text=True)
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    return rows[0], np.array([[float(x) for x in r] for r in rows[1:]])
+
+
+class SameAsTheCommandLine(unittest.TestCase):
+    def test_rigid_simulation(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "p.csv")
+            r = cli("simulate", model("double_pendulum.yaml"), "--integrator", "rk4", "--step", "1e-3",
+                    "--t-end", "0.5", "--quiet", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            header, rows = read_csv(out)
+        run = mbfe.load(model("double_pendulum.yaml")).simulate(integrator="rk4", step=1e-3, t_end=0.5)
+        self.assertEqual(run.status, "completed")
+        self.assertEqual(run.columns, header)
+        for k, name in enumerate(header):
+            # The CSV prints 17 significant digits: the same doubles.
+            np.testing.assert_array_equal(run[name], rows[:, k], err_msg=name)
+
+    def test_crossing_with_probe_and_springs(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "c.csv")
+            r = cli("simulate", model("bridge_moving_mass.yaml"), "--probe", "deck@10", "--t-end", "0.3",
+                    "--quiet", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            header, rows = read_csv(out)
+        run = mbfe.load(model("bridge_moving_mass.yaml")).simulate(t_end=0.3, probes=["deck@10"])
+        self.assertEqual(run.columns, header)
+        np.testing.assert_array_equal(run["deck@10"], rows[:, header.index("deck@10")])
+        np.testing.assert_array_equal(run["force_tyre"], rows[:, header.index("force_tyre")])
+        self.assertEqual(run.springs[0]["name"], "tyre")
+
+    def test_eval(self):
+        r = cli("eval", model("double_pendulum.yaml"), "--q", "0.3,-0.2", "--qd", "1,0.5", "--json", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        expected = json.loads(r.stdout)
+        got = mbfe.load(model("double_pendulum.yaml")).eval([0.3, -0.2], [1.0, 0.5])
+        for key in ("M", "F", "Q"):
+            np.testing.assert_array_equal(got[key], np.array(expected[key]), err_msg=key)
+
+    def test_step_limits(self):
+        r = cli("stability", model("bridge_moving_mass.yaml"), "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        expected = json.loads(r.stdout)
+        got = mbfe.load(model("bridge_moving_mass.yaml")).step_limits()
+        self.assertEqual(got["rk4"]["adjusted"], expected["adjusted"]["rk4"])
+        self.assertEqual(got["forward_euler"]["adjusted"], 0.0)  # "none"
+        self.assertEqual(got["trapezoid"]["original"], float("inf"))  # "unconditional"
+
+    def test_bad_model_raises_with_the_located_message(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "bad.yaml")
+            with open(path, "w") as f:
+                f.write("model: bad\nbodies:\n  - name: a\n    parent: ground\n    joint: {type: hinge}\n")
+            r = cli("eval", path)
+            self.assertEqual(r.returncode, 2)
+            with self.assertRaises(mbfe.ModelError) as caught:
+                mbfe.load(path)
+            self.assertEqual(str(caught.exception), r.stderr.strip())
+            self.assertTrue(str(caught.exception).startswith(path + ":5:"), str(caught.exception))
+        self.assertTrue(issubclass(mbfe.ModelError, ValueError))
+
+    def test_request_the_model_cannot_run(self):
+        with self.assertRaises(ValueError):
+            mbfe.load(model("double_pendulum.yaml")).simulate(probes=["deck@1"])
+
+
+if __name__ == "__main__":
+    unittest.main()
