@@ -1,5 +1,8 @@
 // mbfe simulate MODEL.yaml [--integrator NAME] [--step H] [--t-end T] [--out FILE.csv] ...
+#include <fstream>
 #include <iostream>
+
+#include <nlohmann/json.hpp>
 
 #include "api/mbfe.h"
 #include "tool/cli_args.h"
@@ -31,7 +34,10 @@ Options:
                      lmm:alpha=a0,..,ak:beta=b0,..,bk
   --step H           step in s
   --t-end T          end time in s
-  --out FILE.csv     output file (default: standard output)
+  --out FILE.csv     output file (default: standard output); FILE.csv.json
+                     beside it says what it holds: model and SHA-256,
+                     integrator, step, damping variant, each column's unit,
+                     how the run ended
   --every N          write every N-th step (default: at most about 10000 rows)
   --adjust on|off    beam and coupled models: use the modal adjustment of
                      damping (default: on when a beam has an adjustment block)
@@ -109,6 +115,43 @@ runtime::SimulationRequest request_of(const ParsedArgs& parsed, const ir::Model&
   return request;
 }
 
+/// FILE.csv.json: what the CSV holds and how the run ended, for whoever
+/// reads the CSV later (a person, a notebook, a sweep).
+void write_sidecar(const std::string& csv_path, const Model& model, const runtime::SimulationRequest& request,
+                   const runtime::SimulationReport& report, const CsvObserver& observer, std::size_t rows) {
+  nlohmann::json j;
+  j["mbfe"] = MBFE_GENERATOR_VERSION;
+  j["model"] = {{"name", model.ir().name}, {"file", model.ir().source_path}, {"sha256", model.ir().source_sha256}};
+  j["integrator"] = request.integrator.name;
+  j["step"] = request.step;
+  j["t_end"] = request.t_end;
+  j["variant"] = report.variant;
+  nlohmann::json columns = nlohmann::json::array();
+  const runtime::OutputLayout& layout = observer.layout();
+  for (std::size_t k = 0; k < layout.columns.size(); ++k)
+    columns.push_back({{"name", layout.columns[k]}, {"unit", k < layout.units.size() ? layout.units[k] : ""}});
+  j["columns"] = columns;
+  j["rows"] = rows;
+  const char* status = "completed";
+  switch (report.run.status) {
+    case runtime::SimulationStatus::kCompleted: break;
+    case runtime::SimulationStatus::kDiverged: status = "diverged"; break;
+    case runtime::SimulationStatus::kInterrupted: status = "interrupted"; break;
+    case runtime::SimulationStatus::kFailed: status = "failed"; break;
+  }
+  j["status"] = report.message.empty() ? "completed" : status;
+  j["message"] = report.message;
+  j["steps"] = report.run.steps;
+  j["t_reached"] = report.run.t;
+  j["wall_seconds"] = report.run.wall_seconds;
+  nlohmann::json springs = nlohmann::json::array();
+  for (const runtime::SpringContactTally& c : report.springs)
+    springs.push_back({{"name", c.name}, {"lift_offs", c.lift_offs}, {"time_off", c.time_off}});
+  if (!springs.empty()) j["springs"] = springs;
+  std::ofstream out(csv_path + ".json");
+  out << j.dump(2) << "\n";
+}
+
 /// "mbfe: contact 'tyre': 2 lift-offs, 0.0123 s off contact" per slider_spring.
 void print_spring_tally(const runtime::SimulationReport& report) {
   for (const runtime::SpringContactTally& c : report.springs)
@@ -145,6 +188,7 @@ int cmd_simulate(const Args& args) {
     throw;
   }
   csv.flush();
+  if (out) write_sidecar(*out, model, request, report, observer, csv.rows());
   const runtime::SimulationResult& run = report.run;
   const std::string where = out ? " to " + *out : std::string();
   const std::string variant = report.variant.empty() ? "" : " (" + report.variant + ")";

@@ -5,12 +5,14 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "api/csv_format.h"
 #include "tool/cli_args.h"
 
 namespace mbfe::tool {
 
 namespace {
 constexpr std::size_t kFlushEveryRows = 256;  // bounded loss window even if the process is killed
+
 }
 
 CsvOutput::CsvOutput(const std::string& path) : path_(path) {
@@ -44,8 +46,10 @@ void CsvOutput::header(const std::vector<std::string>& columns) {
 }
 
 void CsvOutput::row(const double* values, std::size_t count) {
-  for (std::size_t i = 0; i < count; ++i) std::fprintf(file_, "%s%.17g", i ? "," : "", values[i]);
-  std::fputc('\n', file_);
+  // One buffer per row, written at once: printf per value cost more than the
+  // simulation on wide rows (docs/performance.md).
+  format_csv_row(values, count, line_);
+  std::fwrite(line_.data(), 1, line_.size(), file_);
   if (++rows_ % kFlushEveryRows == 0) flush();
 }
 

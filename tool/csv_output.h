@@ -22,7 +22,8 @@ class CsvOutput {
   CsvOutput& operator=(const CsvOutput&) = delete;
 
   void header(const std::vector<std::string>& columns);
-  /// One row; numbers printed with 17 significant digits (%.17g).
+  /// One row; each number in the shortest text that reads back as the same
+  /// double (api/csv_format.h).
   void row(const double* values, std::size_t count);
   void flush();
   /// Closes and removes the file when no row has been written: bad input
@@ -35,6 +36,7 @@ class CsvOutput {
   bool owned_ = false;
   std::size_t rows_ = 0;
   std::string path_;
+  std::string line_;  // the row being formatted
 };
 
 /// The rows of a simulation into a CsvOutput: the layout's columns as the
@@ -42,12 +44,18 @@ class CsvOutput {
 class CsvObserver : public runtime::SimulationObserver {
  public:
   explicit CsvObserver(CsvOutput& out) : out_(out) {}
-  void begin(const runtime::OutputLayout& layout) override { out_.header(layout.columns); }
+  void begin(const runtime::OutputLayout& layout) override {
+    layout_ = layout;
+    out_.header(layout.columns);
+  }
   void row(const runtime::OutputRow& row) override { out_.row(row.values.data(), row.values.size()); }
   void notice(const std::string& text) override { std::cerr << "mbfe: " << text << "\n"; }
+  /// The columns and units of the run (empty before begin()).
+  const runtime::OutputLayout& layout() const { return layout_; }
 
  private:
   CsvOutput& out_;
+  runtime::OutputLayout layout_;
 };
 
 }  // namespace mbfe::tool

@@ -124,6 +124,16 @@ TEST(SimulateVehicle, CrossingColumnsAndTally) {
   }
   EXPECT_NE(r.err.find("mbfe: contact 'tyre': "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(" off contact while over the beam"), std::string::npos) << r.err;
+  // The sidecar says what the CSV holds.
+  const std::string meta = slurp(csv.string() + ".json");
+  EXPECT_NE(meta.find("\"name\": \"bridge_moving_mass\""), std::string::npos) << meta;
+  EXPECT_NE(meta.find("\"sha256\": \""), std::string::npos) << meta;
+  EXPECT_NE(meta.find("\"integrator\": \"rk4\""), std::string::npos) << meta;
+  EXPECT_NE(meta.find("\"step\": 0.001"), std::string::npos) << meta;
+  EXPECT_NE(meta.find("\"name\": \"force_tyre\",\n      \"unit\": \"N\""), std::string::npos) << meta;
+  EXPECT_NE(meta.find("\"rows\": 1201"), std::string::npos) << meta;
+  EXPECT_NE(meta.find("\"status\": \"completed\""), std::string::npos) << meta;
+  EXPECT_NE(meta.find("\"variant\": \"adjusted damping, partitioned formulation\""), std::string::npos) << meta;
 }
 
 }  // namespace
