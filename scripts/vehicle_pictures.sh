@@ -4,6 +4,7 @@
 #   docs/images/bridge_moving_force.png      midspan deflection, dynamic against the static influence line
 #   docs/images/bridge_moving_mass.png       deflection under the wheel and tyre force, wheel against force
 #   docs/images/bridge_two_axle_vehicle.png  deflection under each axle and the tyre forces
+#   docs/images/mbfe_plot_crossing.png       the same crossing by `mbfe plot --x` (two panels, units)
 # Usage: scripts/vehicle_pictures.sh [path/to/mbfe]   (default build/bin/mbfe)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -64,4 +65,9 @@ plot "$tmp/truck.csv" using (\$2-5+2):((column("force_front_approach")+column("f
      "$tmp/truck.csv" using (\$2-5-2):((column("force_rear_approach")+column("force_rear_deck")+column("force_rear_exit"))/1000) with lines lw 2 title "rear tyre"
 unset multiplot
 GNUPLOT
+"$mbfe" simulate models/bridge_moving_mass.yaml --probe deck@10 --out "$tmp/mass_plot.csv" --quiet
+"$mbfe" plot "$tmp/mass_plot.csv" -o "$out/mbfe_plot_crossing.png" --x carriage \
+  --columns deflection_tyre,deck@10,force_tyre,carriage_drive \
+  --title "mbfe plot crossing.csv --x carriage --columns deflection_tyre,deck@10,force_tyre,carriage_drive"
+echo "vehicle_pictures: wrote $out/mbfe_plot_crossing.png"
 echo "vehicle_pictures: wrote $out/bridge_moving_force.png $out/bridge_moving_mass.png $out/bridge_two_axle_vehicle.png"
