@@ -7,7 +7,7 @@
 #include "api/mbfe.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/csv_output.h"
+#include "tool/results_output.h"
 
 namespace mbfe::tool {
 
@@ -118,7 +118,7 @@ runtime::SimulationRequest request_of(const ParsedArgs& parsed, const ir::Model&
 /// FILE.csv.json: what the CSV holds and how the run ended, for whoever
 /// reads the CSV later (a person, a notebook, a sweep).
 void write_sidecar(const std::string& csv_path, const Model& model, const runtime::SimulationRequest& request,
-                   const runtime::SimulationReport& report, const CsvObserver& observer, std::size_t rows) {
+                   const runtime::SimulationReport& report, const ResultsObserver& observer, std::size_t rows) {
   nlohmann::json j;
   j["mbfe"] = MBFE_GENERATOR_VERSION;
   j["model"] = {{"name", model.ir().name}, {"file", model.ir().source_path}, {"sha256", model.ir().source_sha256}};
@@ -178,8 +178,8 @@ int cmd_simulate(const Args& args) {
   model.assembled();  // a beam the analysis refuses is bad input before the output file is opened
 
   const auto out = parsed.value("out");
-  CsvOutput csv(out.value_or(""));
-  CsvObserver observer(csv);
+  ResultsOutput csv(out.value_or(""));
+  ResultsObserver observer(csv);
   runtime::SimulationReport report;
   try {
     report = model.simulate(request, observer);

@@ -11,7 +11,7 @@
 
 #include "api/mbfe.h"
 #include "frontend/parse_sweep.h"
-#include "tool/csv_output.h"
+#include "tool/results_output.h"
 
 namespace mbfe::tool {
 
@@ -42,7 +42,7 @@ void write_atomically(const fs::path& p, const std::string& text) {
 /// The run's rows into run.csv, and the statistics of the collected columns.
 class StatsObserver : public runtime::SimulationObserver {
  public:
-  StatsObserver(const ir::Sweep& sweep, CsvOutput& csv) : sweep_(sweep), csv_(csv) {}
+  StatsObserver(const ir::Sweep& sweep, ResultsOutput& csv) : sweep_(sweep), csv_(csv) {}
 
   void begin(const runtime::OutputLayout& layout) override {
     csv_.header(layout.columns);
@@ -106,7 +106,7 @@ class StatsObserver : public runtime::SimulationObserver {
     long n = 0;
   };
   const ir::Sweep& sweep_;
-  CsvOutput& csv_;
+  ResultsOutput& csv_;
   std::vector<int> columns_;
   std::vector<Acc> acc_;
 };
@@ -176,7 +176,7 @@ PointResult run_sweep_point(const ir::Sweep& sweep, const std::string& model_tex
     options.quiet = true;
     options.cache_by_sources = true;
     const Model model = Model::parse(text, model_file.string(), options);
-    CsvOutput csv((dir / "run.csv").string());
+    ResultsOutput csv((dir / "run.csv").string());
     StatsObserver observer(sweep, csv);
     const runtime::SimulationReport report = model.simulate(request_of(sweep, model.ir()), observer);
     csv.flush();

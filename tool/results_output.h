@@ -12,14 +12,14 @@
 
 namespace mbfe::tool {
 
-class CsvOutput {
+class ResultsOutput {
  public:
   /// Opens `path` for writing, or stdout when `path` is empty.
   /// @throws UsageError (exit status 2) naming the path if it cannot be opened.
-  explicit CsvOutput(const std::string& path);
-  ~CsvOutput();
-  CsvOutput(const CsvOutput&) = delete;
-  CsvOutput& operator=(const CsvOutput&) = delete;
+  explicit ResultsOutput(const std::string& path);
+  ~ResultsOutput();
+  ResultsOutput(const ResultsOutput&) = delete;
+  ResultsOutput& operator=(const ResultsOutput&) = delete;
 
   void header(const std::vector<std::string>& columns);
   /// One row; each number in the shortest text that reads back as the same
@@ -39,11 +39,11 @@ class CsvOutput {
   std::string line_;  // the row being formatted
 };
 
-/// The rows of a simulation into a CsvOutput: the layout's columns as the
+/// The rows of a simulation into a ResultsOutput: the layout's columns as the
 /// header, then one line per output row.
-class CsvObserver : public runtime::SimulationObserver {
+class ResultsObserver : public runtime::SimulationObserver {
  public:
-  explicit CsvObserver(CsvOutput& out) : out_(out) {}
+  explicit ResultsObserver(ResultsOutput& out) : out_(out) {}
   void begin(const runtime::OutputLayout& layout) override {
     layout_ = layout;
     out_.header(layout.columns);
@@ -54,7 +54,7 @@ class CsvObserver : public runtime::SimulationObserver {
   const runtime::OutputLayout& layout() const { return layout_; }
 
  private:
-  CsvOutput& out_;
+  ResultsOutput& out_;
   runtime::OutputLayout layout_;
 };
 

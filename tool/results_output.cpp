@@ -1,4 +1,4 @@
-#include "tool/csv_output.h"
+#include "tool/results_output.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -15,7 +15,7 @@ constexpr std::size_t kFlushEveryRows = 256;  // bounded loss window even if the
 
 }
 
-CsvOutput::CsvOutput(const std::string& path) : path_(path) {
+ResultsOutput::ResultsOutput(const std::string& path) : path_(path) {
   if (path.empty()) {
     file_ = stdout;
   } else {
@@ -27,25 +27,25 @@ CsvOutput::CsvOutput(const std::string& path) : path_(path) {
   }
 }
 
-CsvOutput::~CsvOutput() {
+ResultsOutput::~ResultsOutput() {
   if (!file_) return;
   std::fflush(file_);
   if (owned_) std::fclose(file_);
 }
 
-void CsvOutput::discard_if_empty() {
+void ResultsOutput::discard_if_empty() {
   if (!owned_ || !file_ || rows_ > 0) return;
   std::fclose(file_);
   file_ = nullptr;
   std::remove(path_.c_str());
 }
 
-void CsvOutput::header(const std::vector<std::string>& columns) {
+void ResultsOutput::header(const std::vector<std::string>& columns) {
   for (std::size_t i = 0; i < columns.size(); ++i) std::fprintf(file_, "%s%s", i ? "," : "", columns[i].c_str());
   std::fputc('\n', file_);
 }
 
-void CsvOutput::row(const double* values, std::size_t count) {
+void ResultsOutput::row(const double* values, std::size_t count) {
   // One buffer per row, written at once: printf per value cost more than the
   // simulation on wide rows (docs/performance.md).
   format_csv_row(values, count, line_);
@@ -53,7 +53,7 @@ void CsvOutput::row(const double* values, std::size_t count) {
   if (++rows_ % kFlushEveryRows == 0) flush();
 }
 
-void CsvOutput::flush() {
+void ResultsOutput::flush() {
   if (std::fflush(file_) != 0) throw std::runtime_error(path_ + ": write failed: " + std::strerror(errno));
 }
 
