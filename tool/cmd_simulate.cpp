@@ -34,10 +34,11 @@ Options:
                      lmm:alpha=a0,..,ak:beta=b0,..,bk
   --step H           step in s
   --t-end T          end time in s
-  --out FILE.csv     output file (default: standard output); FILE.csv.json
-                     beside it says what it holds: model and SHA-256,
-                     integrator, step, damping variant, each column's unit,
-                     how the run ended
+  --out FILE.csv     output file (default: standard output); FILE.npy writes a
+                     NumPy array (rows x columns, numpy.load reads it) instead;
+                     FILE.csv.json / FILE.npy.json beside it says what it holds:
+                     model and SHA-256, integrator, step, damping variant, each
+                     column's name and unit, how the run ended
   --every N          write every N-th step (default: at most about 10000 rows)
   --adjust on|off    beam and coupled models: use the modal adjustment of
                      damping (default: on when a beam has an adjustment block)

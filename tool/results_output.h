@@ -1,5 +1,7 @@
-// CSV output of a simulation that never loses what it has: rows go straight to
-// the file, which is flushed every few rows and on every exit path.
+// The output of a simulation, as CSV or, for a path ending in .npy, as a NumPy
+// array (rows x columns of doubles; the column names in the sidecar JSON).
+// It never loses what it has: rows go straight to the file, which is flushed
+// (and a .npy's shape rewritten) every few rows and on every exit path.
 #pragma once
 
 #include <iostream>
@@ -14,7 +16,8 @@ namespace mbfe::tool {
 
 class ResultsOutput {
  public:
-  /// Opens `path` for writing, or stdout when `path` is empty.
+  /// Opens `path` for writing, or stdout when `path` is empty; `.npy` selects
+  /// the binary format.
   /// @throws UsageError (exit status 2) naming the path if it cannot be opened.
   explicit ResultsOutput(const std::string& path);
   ~ResultsOutput();
@@ -37,6 +40,8 @@ class ResultsOutput {
   std::size_t rows_ = 0;
   std::string path_;
   std::string line_;  // the row being formatted
+  bool npy_ = false;
+  std::size_t columns_ = 0;
 };
 
 /// The rows of a simulation into a ResultsOutput: the layout's columns as the

@@ -58,6 +58,35 @@ class SameAsTheCommandLine(unittest.TestCase):
         np.testing.assert_array_equal(run["force_tyre"], rows[:, header.index("force_tyre")])
         self.assertEqual(run.springs[0]["name"], "tyre")
 
+    def test_npy_output_reads_back_as_the_run(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "c.npy")
+            r = cli("simulate", model("bridge_moving_mass.yaml"), "--probe", "deck@10", "--t-end", "0.3",
+                    "--quiet", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            table = np.load(out)
+            with open(out + ".json") as f:
+                meta = json.load(f)
+        names = [c["name"] for c in meta["columns"]]
+        self.assertEqual(table.shape, (meta["rows"], len(names)))
+        run = mbfe.load(model("bridge_moving_mass.yaml")).simulate(t_end=0.3, probes=["deck@10"])
+        for k, name in enumerate(names):
+            np.testing.assert_array_equal(table[:, k], run[name], err_msg=name)
+
+    def test_npy_of_a_diverged_run_holds_every_row_written(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "d.npy")
+            r = cli("simulate", model("double_pendulum.yaml"), "--integrator", "forward_euler", "--step", "0.2",
+                    "--t-end", "1000", "--every", "1", "--quiet", "--out", out)
+            self.assertEqual(r.returncode, 3, r.stderr)
+            table = np.load(out)
+            with open(out + ".json") as f:
+                meta = json.load(f)
+        self.assertEqual(meta["status"], "diverged")
+        self.assertEqual(table.shape[0], meta["rows"])
+        self.assertGreater(table.shape[0], 10)
+        self.assertTrue(np.isfinite(table).all())
+
     def test_eval(self):
         r = cli("eval", model("double_pendulum.yaml"), "--q", "0.3,-0.2", "--qd", "1,0.5", "--json", "--quiet")
         self.assertEqual(r.returncode, 0, r.stderr)
