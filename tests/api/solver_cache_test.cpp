@@ -1,4 +1,4 @@
-// The run-time solver cache (tool/solver_cache.cpp) under stress, through the
+// The run-time solver cache (api/solver_cache.cpp) under stress, through the
 // real `mbfe` binary in separate processes, each test with its own
 // MBFE_CACHE_DIR: concurrent compiles of the same new model, damaged entries,
 // a failing compiler, and content-addressed keys.
