@@ -14,6 +14,7 @@ PACKAGES=(
   gnuplot-nox                                 # pictures (mbfe plot, mbfe modal --plot)
   python3-dev pybind11-dev python3-numpy      # the Python module (docs/python.md)
   python3-matplotlib                          # its example's picture (examples/python/)
+  python3-vtk9 xvfb xauth                     # reading and rendering the animation in tests (docs/animation.md)
 )
 # Optional extras, heavy or only for some jobs:
 if [[ "${MBFE_WITH_SUNDIALS:-0}" == 1 ]]; then

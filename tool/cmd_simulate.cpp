@@ -1,5 +1,7 @@
 // mbfe simulate MODEL.yaml [--integrator NAME] [--step H] [--t-end T] [--out FILE.csv] ...
+#include <cmath>
 #include <fstream>
+#include <memory>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
@@ -8,6 +10,7 @@
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "tool/results_output.h"
+#include "tool/vtk_animation.h"
 
 namespace mbfe::tool {
 
@@ -51,6 +54,11 @@ Options:
   --start static     start from the static equilibrium at t = 0 of everything
                      not driven (as `initial: {static: true}`); --start given
                      starts from `initial:` as written
+  --vtk DIR          also write an animation ParaView opens: DIR/<model>.pvd and
+                     its frames (beams' deformed axes, bodies through their
+                     points, spring contact forces; docs/animation.md)
+  --vtk-scale S      deflections drawn S times enlarged (default 1)
+  --vtk-frames N     at most N frames, evenly spaced in time (default 200)
   --strict           an initial state that violates the contacts is an error
                      (exit 2) instead of being projected onto them
   --quiet            no progress or cache messages on stderr
@@ -116,6 +124,25 @@ runtime::SimulationRequest request_of(const ParsedArgs& parsed, const ir::Model&
   return request;
 }
 
+/// Hands every call to two observers (the results file and the animation).
+class TeeObserver : public runtime::SimulationObserver {
+ public:
+  TeeObserver(runtime::SimulationObserver& a, runtime::SimulationObserver& b) : a_(a), b_(b) {}
+  void begin(const runtime::OutputLayout& layout) override {
+    a_.begin(layout);
+    b_.begin(layout);
+  }
+  void row(const runtime::OutputRow& row) override {
+    a_.row(row);
+    b_.row(row);
+  }
+  void notice(const std::string& text) override { a_.notice(text); }
+
+ private:
+  runtime::SimulationObserver& a_;
+  runtime::SimulationObserver& b_;
+};
+
 /// FILE.csv.json: what the CSV holds and how the run ended, for whoever
 /// reads the CSV later (a person, a notebook, a sweep).
 void write_sidecar(const std::string& csv_path, const Model& model, const runtime::SimulationRequest& request,
@@ -163,7 +190,8 @@ void print_spring_tally(const runtime::SimulationReport& report) {
 }  // namespace
 
 int cmd_simulate(const Args& args) {
-  const ParsedArgs parsed(args, {"integrator", "step", "t-end", "out", "every", "adjust", "probe", "rho-inf", "formulation", "start"},
+  const ParsedArgs parsed(args, {"integrator", "step", "t-end", "out", "every", "adjust", "probe", "rho-inf", "formulation", "start",
+                           "vtk", "vtk-scale", "vtk-frames"},
                           {"help", "quiet", "strict"});
   if (parsed.has("help")) {
     std::cout << kHelp;
@@ -173,7 +201,17 @@ int cmd_simulate(const Args& args) {
   LoadOptions load;
   load.quiet = parsed.has("quiet");
   const Model model = Model::load(parsed.positional()[0], load);
-  const runtime::SimulationRequest request = request_of(parsed, model.ir());
+  runtime::SimulationRequest request = request_of(parsed, model.ir());
+  std::unique_ptr<VtkAnimation> vtk;
+  if (const auto dir = parsed.value("vtk")) {
+    const double scale = parsed.number("vtk-scale").value_or(1.0);
+    const double frames = parsed.number("vtk-frames").value_or(200.0);
+    if (!(frames >= 1) || frames != std::floor(frames)) throw UsageError("--vtk-frames must be a positive whole number");
+    request.state_in_rows = true;  // the frames need every coordinate
+    vtk = std::make_unique<VtkAnimation>(model, *dir, scale, static_cast<int>(frames), request.t_end);
+  } else if (parsed.has("vtk-scale") || parsed.has("vtk-frames")) {
+    throw UsageError("--vtk-scale and --vtk-frames go with --vtk DIR");
+  }
   if (parsed.has("formulation") && model.kind() != runtime::ModelKind::kCoupled)
     throw UsageError("--formulation applies to coupled models (bodies, beams and contacts) only");
   model.assembled();  // a beam the analysis refuses is bad input before the output file is opened
@@ -183,12 +221,23 @@ int cmd_simulate(const Args& args) {
   ResultsObserver observer(csv);
   runtime::SimulationReport report;
   try {
-    report = model.simulate(request, observer);
+    if (vtk) {
+      TeeObserver both(observer, *vtk);
+      report = model.simulate(request, both);
+    } else {
+      report = model.simulate(request, observer);
+    }
   } catch (...) {
     csv.discard_if_empty();  // bad input found on the way (a static start that fails): no file left
     throw;
   }
   csv.flush();
+  if (vtk) {
+    vtk->finish();
+    if (!request.quiet)
+      std::cerr << "mbfe: " << vtk->frames_written() << " animation frames in " << *parsed.value("vtk") << "/"
+                << model.ir().name << ".pvd\n";
+  }
   if (out) write_sidecar(*out, model, request, report, observer, csv.rows());
   const runtime::SimulationResult& run = report.run;
   const std::string where = out ? " to " + *out : std::string();
