@@ -1,5 +1,6 @@
 #include "tool/vtk_animation.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -56,13 +57,34 @@ VtkAnimation::VtkAnimation(const Model& model, std::string dir, double scale, in
 }
 
 void VtkAnimation::begin(const runtime::OutputLayout& layout) {
-  for (const ir::Contact& c : model_.ir().contacts) {
-    if (c.type != ir::ContactType::kSliderSpring) continue;
-    int index = -1;
+  auto column = [&](const std::string& name) {
     for (std::size_t k = 0; k < layout.columns.size(); ++k)
-      if (layout.columns[k] == "force_" + c.name) index = static_cast<int>(k);
-    force_columns_.push_back(index);
+      if (layout.columns[k] == name) return static_cast<int>(k);
+    return -1;
+  };
+  for (const ir::Contact& c : model_.ir().contacts) {
+    switch (c.type) {
+      case ir::ContactType::kPin:
+        force_columns_.push_back({column("lambda_" + c.name + "_1"), column("lambda_" + c.name + "_2")});
+        break;
+      case ir::ContactType::kSliderPin: force_columns_.push_back({column("lambda_" + c.name)}); break;
+      case ir::ContactType::kSliderSpring: force_columns_.push_back({column("force_" + c.name)}); break;
+    }
   }
+}
+
+double VtkAnimation::slope_at(const runtime::OutputRow& row, std::size_t beam, double s) const {
+  const ir::Model& ir = model_.ir();
+  const runtime::BeamPart& bp = model_.assembled().beams().beams[beam];
+  const double le = bp.system.element_length;
+  if (!(s >= 0.0 && s <= bp.system.length)) return 0.0;  // off the beam: no force to tilt
+  const int e = std::min(static_cast<int>(s / le), ir.beams[beam].elements - 1);
+  Eigen::Vector4d qe;
+  for (int a = 0; a < 4; ++a) {
+    const int f = bp.system.full_to_free[2 * e + a];
+    qe[a] = f >= 0 ? row.q[static_cast<Eigen::Index>(ir.bodies.size()) + bp.offset + f] : 0.0;
+  }
+  return runtime::hermite::dN_ds((s - e * le) / le, le) * qe;
 }
 
 void VtkAnimation::row(const runtime::OutputRow& row) {
@@ -150,22 +172,33 @@ void VtkAnimation::write_frame(const runtime::OutputRow& row, const std::string&
     }
     ++part;
   }
-  // Spring contacts: the force on the body, along the beam's normal.
-  std::size_t spring = 0;
-  for (const ir::Contact& c : ir.contacts) {
-    if (c.type != ir::ContactType::kSliderSpring) continue;
-    const int column = force_columns_.size() > spring ? force_columns_[spring] : -1;
-    ++spring;
-    if (!solver || column < 0) continue;
+  // Contacts: the force on the body at its point, f_P = -(dPhi/dr_P)^T lambda
+  // (docs/contacts.md): a pin a lambda_1 + n lambda_2; a slider_pin
+  // lambda (n - w'(s) a); a slider_spring N (n - w'(s) a), N its force.
+  for (std::size_t c = 0; c < ir.contacts.size(); ++c) {
+    const ir::Contact& contact = ir.contacts[c];
+    const std::vector<int>& columns = force_columns_[c];
+    if (!solver || columns.empty() || columns.front() < 0) continue;
     double xy[2];
-    solver->point_position(row.q.data(), c.body, c.point, xy);
-    const double n = row.values[static_cast<std::size_t>(column)];
-    const double angle = ir.beams[static_cast<std::size_t>(c.beam)].angle;
+    solver->point_position(row.q.data(), contact.body, contact.point, xy);
+    const ir::Beam& beam = ir.beams[static_cast<std::size_t>(contact.beam)];
+    const double ax = std::cos(beam.angle), ay = std::sin(beam.angle), nx = -ay, ny = ax;
+    auto value = [&](int k) { return row.values[static_cast<std::size_t>(columns[static_cast<std::size_t>(k)])]; };
+    double fx = 0.0, fy = 0.0;
+    if (contact.type == ir::ContactType::kPin) {
+      fx = ax * value(0) + nx * value(1);
+      fy = ay * value(0) + ny * value(1);
+    } else {
+      const double s = (xy[0] - beam.origin[0]) * ax + (xy[1] - beam.origin[1]) * ay;
+      const double slope = slope_at(row, static_cast<std::size_t>(contact.beam), s);
+      fx = value(0) * (nx - slope * ax);
+      fy = value(0) * (ny - slope * ay);
+    }
     g.verts.push_back({static_cast<int>(g.points.size())});
     g.vert_part.push_back(part++);
     g.points.push_back({xy[0], xy[1], 0.0});
     g.w.push_back(0.0);
-    g.force.push_back({-n * std::sin(angle), n * std::cos(angle), 0.0});
+    g.force.push_back({fx, fy, 0.0});
   }
 
   std::ostringstream out;

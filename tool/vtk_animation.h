@@ -4,8 +4,9 @@
 //   - every beam as a polyline of its deformed axis (the Hermite
 //     interpolation, 4 segments per element, the deflection times --vtk-scale),
 //   - every body as a polyline through its named points (closed from three on),
-//   - every slider_spring as a vertex at its point with the contact force as
-//     a vector (N, along the beam's normal, on the body),
+//   - every contact as a vertex at its point with the force on the body as a
+//     vector (N): from the multipliers of a pin or slider_pin, the force of a
+//     slider_spring,
 // point data `w` (the beam's deflection, unscaled, m) and `contact_force`,
 // cell data `part` (the index of the beam, then of the body, then of the contact).
 #pragma once
@@ -37,7 +38,10 @@ class VtkAnimation : public runtime::SimulationObserver {
   double scale_;
   double interval_;
   double next_ = 0.0;
-  std::vector<int> force_columns_;  // per slider_spring, its force_<contact> column
+  /// The beam's slope w'(s) at s in this row's state (0 off the beam).
+  double slope_at(const runtime::OutputRow& row, std::size_t beam, double s) const;
+
+  std::vector<std::vector<int>> force_columns_;  // per contact: its lambda or force columns
   std::vector<double> times_;
   std::vector<std::string> files_;
 };

@@ -81,6 +81,28 @@ class Animation(unittest.TestCase):
         self.assertEqual(got, expected)
         self.assertGreater(expected[1], 30000.0)  # the front wheel is on the deck at t = 0.8 s
 
+    def test_a_slider_pin_force_is_its_multiplier_on_the_body(self):
+        vtk_dir = os.path.join(self.tmp, "pendulum")
+        csv_path = os.path.join(self.tmp, "pendulum.csv")
+        r = subprocess.run([CLI, "simulate", os.path.join(SOURCE, "models", "double_pendulum_beam.yaml"), "--step",
+                            "1e-5", "--t-end", "0.05", "--probe", "beam1@0.5", "--out", csv_path, "--vtk", vtk_dir,
+                            "--vtk-frames", "6", "--quiet"], capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(csv_path) as f:
+            header = f.readline().strip().split(",")
+        rows = np.loadtxt(csv_path, delimiter=",", skiprows=1)
+        root = ET.parse(os.path.join(vtk_dir, "double_pendulum_beam.pvd")).getroot()
+        t, name = [(float(d.get("timestep")), d.get("file")) for d in root.iter("DataSet")][-1]
+        data = self.read(os.path.join(vtk_dir, name))
+        row = rows[int(np.argmin(np.abs(rows[:, 0] - t)))]
+        lam = row[header.index("lambda_tip_slider")]
+        fx, fy, _ = data.GetPointData().GetArray("contact_force").GetTuple3(data.GetNumberOfPoints() - 1)
+        # A horizontal beam: the normal is (0, 1), so f_y is the multiplier itself and
+        # f_x = -lambda w'(s), small against it.
+        self.assertEqual(fy, lam)
+        self.assertLess(abs(fx), 0.05 * abs(lam))
+        self.assertGreater(abs(lam), 1.0)
+
     def test_a_frame_renders_off_screen(self):
         if shutil.which("xvfb-run") is None:
             self.fail("xvfb-run is missing (scripts/install-deps.sh installs xvfb)")
