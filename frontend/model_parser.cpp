@@ -92,8 +92,19 @@ void ModelParser::parse_initial(const MapView& view) {
   }
 }
 
-/// A model whose every coordinate is driven has nothing left to integrate.
+/// A model whose every coordinate is driven has nothing left to integrate; and
+/// driven joints do not yet combine with constraint contacts (docs/model-format.md).
 void ModelParser::check_something_moves(const MapView& top) const {
+  for (const Body& body : model_.bodies) {
+    if (!body.joint.motion) continue;
+    for (const Contact& c : model_.contacts) {
+      if (!c.is_constraint()) continue;
+      top.fail(body.joint.motion_loc,
+               "body " + quoted(body.name) + ": joint.motion: driven joints work with slider_spring contacts; " +
+                   "contact " + quoted(c.name) + " is a " + (c.type == ContactType::kPin ? "pin" : "slider_pin") +
+                   ", which does not support them yet");
+    }
+  }
   if (!model_.beams.empty()) return;
   const Body* last_driven = nullptr;
   for (const Body& body : model_.bodies) {
