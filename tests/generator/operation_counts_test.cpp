@@ -12,7 +12,7 @@
 namespace mbfe {
 namespace {
 
-// Issue 2: "emitted operation count (roughly linear in N: ops(20)/ops(10) below 2.5)".
+// The requirement: emitted operation count roughly linear in N, ops(20)/ops(10) below 2.5.
 // Linear code gives about 2 (plus the kinematics' constant part); code that
 // writes each of M's N(N+1)/2 entries out gives about 2.7 for these chains.
 constexpr double kIssue2MaxOpsRatio = 2.5;

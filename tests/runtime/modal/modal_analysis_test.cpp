@@ -14,7 +14,7 @@ namespace {
 
 using test::kPi;
 
-// Issue 3: the first five modes within 1e-4 of Euler-Bernoulli theory at 50
+// The requirement: the first five modes within 1e-4 of Euler-Bernoulli theory at 50
 // elements (the discretisation error of mode 5 is 7e-6; 1e-4 is the spec).
 constexpr double kAnalyticTol = 1e-4;
 // Phi^T M Phi = I after a dense solve of 100 DOF, cond(K) ~ 1e8.
