@@ -219,8 +219,10 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   std::optional<StepLimit> limit;
   if (report.run.status != SimulationStatus::kInterrupted) {
     try {
+      // The eigenvalues `mbfe stability` takes: a real part at round-off of
+      // the modulus is zero (an undamped mode), not growth.
       const StateSpectrum spectrum = linearized_spectrum(model.make_dynamics(adjusted), 0.0, q0, qd0);
-      limit = stable_step(request.integrator, spectrum.eigenvalues);
+      limit = stable_step(request.integrator, split_growing(spectrum).limiting.eigenvalues);
     } catch (const std::exception&) {
       // No limit known: the message says only what happened.
     }

@@ -107,6 +107,18 @@ loads:
   EXPECT_NEAR(q_cart, expected, 1e-12) << r.out;
 }
 
+TEST(SimulateVehicle, ADivergenceIsBlamedOnTheStepNotOnAnUndampedMode) {
+  // The original (unadjusted) bridge at 2e-4 s: RK4's limit is 2.7e-5 s
+  // (mbfe stability); the undamped beam modes, whose real parts compute to
+  // round-off (1e-12), must not read as "no stable step".
+  test::TempDir dir;
+  const CliRun r = run_cli("simulate models/bridge_moving_mass.yaml --adjust off --step 2e-4 --t-end 0.05 --quiet --out " +
+                           shell_quote((dir / "x.csv").string()));
+  EXPECT_EQ(r.status, 3) << r.all();
+  EXPECT_NE(r.err.find("step 0.0002 exceeds rk4's stable limit 2.7234e-05"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("no stable step"), std::string::npos) << r.err;
+}
+
 TEST(SimulateVehicle, CrossingColumnsAndTally) {
   TempDir dir;
   const fs::path csv = dir / "crossing.csv";
