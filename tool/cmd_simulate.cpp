@@ -33,7 +33,7 @@ override the model's `simulation:` block.
 
 Options:
   --integrator NAME  forward_euler, backward_euler, explicit_midpoint, trapezoid,
-                     rk4, generalized_alpha (beams), ab2, bdf2,
+                     rk4, generalized_alpha (beams, coupled), ab2, bdf2,
                      lmm:alpha=a0,..,ak:beta=b0,..,bk
   --step H           step in s
   --t-end T          end time in s
@@ -172,6 +172,9 @@ void write_sidecar(const std::string& csv_path, const Model& model, const runtim
   j["steps"] = report.run.steps;
   j["t_reached"] = report.run.t;
   j["wall_seconds"] = report.run.wall_seconds;
+  if (report.run.newton.iterations > 0)
+    j["newton"] = {{"iterations", report.run.newton.iterations},
+                   {"factorizations", report.run.newton.factorizations}};
   nlohmann::json springs = nlohmann::json::array();
   for (const runtime::SpringContactTally& c : report.springs)
     springs.push_back({{"name", c.name}, {"lift_offs", c.lift_offs}, {"time_off", c.time_off}});
@@ -247,6 +250,10 @@ int cmd_simulate(const Args& args) {
       std::cerr << "mbfe: " << model.ir().name << variant << ": " << run.steps << " " << run.integrator
                 << " steps of " << run.step << " s to t = " << run.t << " s in " << run.wall_seconds << " s; "
                 << csv.rows() << " rows written" << where << "\n";
+    if (!request.quiet && run.newton.iterations > 0)
+      std::cerr << "mbfe: Newton: " << run.newton.iterations << " iterations ("
+                << static_cast<double>(run.newton.iterations) / std::max<long>(run.newton.steps, 1)
+                << " per step), " << run.newton.factorizations << " factorisations of the iteration matrix\n";
     if (!request.quiet) print_spring_tally(report);
     return 0;
   }

@@ -16,6 +16,7 @@
 #include "runtime/integrators/integrator_spec.h"
 #include "runtime/integrators/linear_second_order_system.h"
 #include "runtime/integrators/ode_system.h"
+#include "runtime/integrators/second_order_system.h"
 
 namespace mbfe::runtime {
 
@@ -31,9 +32,14 @@ class Stepper {
   /// between reset() calls for multistep methods. @throws std::runtime_error
   /// from the system (singular matrix, ...).
   virtual void step(double t, double h, Eigen::VectorXd& y) = 0;
+  /// Newton iterations and factorisations so far (zero for explicit methods
+  /// and for the first-order implicit ones).
+  virtual NewtonStatistics newton_statistics() const { return {}; }
 };
 
-/// Binds `spec` to `system` (which must outlive the stepper).
+/// Binds `spec` to `system` (which must outlive the stepper). A system that is
+/// also a SecondOrderSystem gets the second-order form of backward_euler,
+/// trapezoid, bdf2 and generalized_alpha (second_order_steppers.h).
 /// @throws std::invalid_argument if generalized_alpha is asked of a system that
 /// is not a LinearSecondOrderSystem, or the lmm coefficients are malformed.
 std::unique_ptr<Stepper> make_stepper(const IntegratorSpec& spec, OdeSystem& system);

@@ -176,6 +176,7 @@ SimulationResult run_simulation(OdeSystem& system, const IntegratorSpec& integra
   }
   progress.finish();
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  result.newton = stepper->newton_statistics();
   return result;
 }
 

@@ -76,6 +76,7 @@ struct SimulationResult {
   std::string message;       // kFailed: what the system threw
   std::int64_t rows = 0;     // rows handed to the sink
   double wall_seconds = 0.0;
+  NewtonStatistics newton;   // implicit second-order steppers: iterations, factorisations
 };
 
 using RowSink = std::function<void(double t, const Eigen::VectorXd& y)>;

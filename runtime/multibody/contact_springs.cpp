@@ -12,7 +12,8 @@ ContactSprings::ContactSprings(const mbfe_model_v1& model, const ContactConstrai
   for (int c = 0; c < model.num_contacts; ++c)
     if (model.contacts[c].type == 2) contacts_.push_back(c);
   states_.resize(contacts_.size());
-  jb_.resize(static_cast<std::size_t>(std::max(1, model.num_coordinates)));
+  gradients_.resize(contacts_.size());
+  for (SpringGradient& g : gradients_) g.jb.resize(static_cast<std::size_t>(std::max(1, model.num_coordinates)));
 }
 
 std::string ContactSprings::name(int k) const { return cc_.contact_name(contacts_[k]); }
@@ -25,6 +26,8 @@ void ContactSprings::apply(const double* qb, const double* qc, const double* qbd
     const BeamMesh& beam = cc_.beams()[kern.beam];
     SpringContactState& st = states_[k];
     st = SpringContactState{};
+    SpringGradient& g = gradients_[k];
+    g.pressing = false;
     st.s = kern.position(qb);
     st.on_beam = st.s >= 0.0 && st.s <= beam.length();
     if (!st.on_beam) continue;
@@ -33,7 +36,7 @@ void ContactSprings::apply(const double* qb, const double* qc, const double* qbd
     const double s0 = element * beam.element_length;
     const int offset = cc_.beam_offset(kern.beam);
     double qe[4], qed[4];
-    int cols[4];
+    int* cols = g.cols;
     for (int j = 0; j < 4; ++j) {
       const int f = beam.full_to_free[2 * element + j];
       cols[j] = f >= 0 ? offset + f : -1;
@@ -43,16 +46,18 @@ void ContactSprings::apply(const double* qb, const double* qc, const double* qbd
     kern.phi(qb, qe, s0, beam.element_length, &st.delta);
     st.w = hermite::N((st.s - s0) / beam.element_length, beam.element_length) *
            Eigen::Map<const Eigen::Vector4d>(qe);
-    double je[4];
-    kern.jacobians(qb, qe, s0, beam.element_length, jb_.data(), je);
-    for (int j = 0; j < nb; ++j) st.rate += jb_[j] * qbd[j];
+    double* je = g.je;
+    std::vector<double>& jb = g.jb;
+    kern.jacobians(qb, qe, s0, beam.element_length, jb.data(), je);
+    for (int j = 0; j < nb; ++j) st.rate += jb[j] * qbd[j];
     for (int j = 0; j < 4; ++j)
       if (cols[j] >= 0) st.rate += je[j] * qed[j];
     double force = kern.stiffness * st.delta + kern.damping * st.rate;
     if (kern.unilateral && (st.delta <= 0.0 || force < 0.0)) force = 0.0;
     st.force = force;
+    g.pressing = !kern.unilateral || force > 0.0;
     if (force == 0.0) continue;
-    for (int j = 0; j < nb; ++j) q_force[j] -= jb_[j] * force;
+    for (int j = 0; j < nb; ++j) q_force[j] -= jb[j] * force;
     for (int j = 0; j < 4; ++j)
       if (cols[j] >= 0) beam_force[cols[j]] -= je[j] * force;
   }

@@ -35,6 +35,19 @@ struct SpringContactState {
   double w = 0.0;       // m, the beam's deflection under the point (0 off the beam)
 };
 
+/// The gradient g = d delta / dq of one spring at its last evaluation: the
+/// rigid part and the 4 beam DOFs of the element under the point (global q_c
+/// columns, -1 for a DOF fixed by a support). The spring's generalized force
+/// is -g N, so its tangent stiffness is k g g^T and its damping c g g^T while
+/// it presses (the change of g itself is left out: a Newton matrix, not an
+/// exact Jacobian).
+struct SpringGradient {
+  std::vector<double> jb;
+  double je[4] = {0, 0, 0, 0};
+  int cols[4] = {-1, -1, -1, -1};
+  bool pressing = false;  // on the beam and N > 0 (or bilateral)
+};
+
 class ContactSprings {
  public:
   /// The model's slider_spring contacts (type 2), on `beams` numbered as in
@@ -52,13 +65,18 @@ class ContactSprings {
              Eigen::Ref<Eigen::VectorXd> q_force, Eigen::Ref<Eigen::VectorXd> beam_force);
   /// The states of the last apply().
   const std::vector<SpringContactState>& states() const { return states_; }
+  /// The gradients of the last apply().
+  const SpringGradient& gradient(int k) const { return gradients_[k]; }
+  /// Stiffness and damping of spring k (N/m, N s/m).
+  double stiffness(int k) const { return model_.contacts[contacts_[k]].stiffness; }
+  double damping(int k) const { return model_.contacts[contacts_[k]].damping; }
 
  private:
   const mbfe_model_v1& model_;
   const ContactConstraints& cc_;
   std::vector<int> contacts_;
   std::vector<SpringContactState> states_;
-  std::vector<double> jb_;
+  std::vector<SpringGradient> gradients_;
 };
 
 /// Lift-offs and time off contact of the spring contacts over a run, counted

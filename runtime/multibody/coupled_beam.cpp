@@ -31,7 +31,10 @@ BeamMesh beam_mesh(const BeamSystem& beam) {
 }
 
 CoupledBeam coupled_beam(const BeamSystem& beam) {
-  return coupled_beam(beam, sparse_beam_force(beam.C, beam.K));
+  CoupledBeam out = coupled_beam(beam, sparse_beam_force(beam.C, beam.K));
+  out.C = beam.C;
+  out.K = beam.K;
+  return out;
 }
 
 CoupledBeam coupled_beam(const BeamSystem& beam, BeamForceFn force) {

@@ -37,6 +37,10 @@ struct CoupledBeam {
   /// Optional: the loads that change with time (runtime/fem/beam_loads.h), on
   /// this beam's free DOFs.
   TimeLoadFn time_loads;
+  /// The sparse C and K of `force` when it is C q' + K q with sparse matrices
+  /// (the original Rayleigh beam); empty for the adjusted operators. The
+  /// Newton matrix of the implicit steppers is built from them.
+  Eigen::SparseMatrix<double> C, K;
 };
 
 /// Mesh of an assembled beam (uniform elements).

@@ -73,6 +73,10 @@ std::vector<CoupledBeam> coupled_beams(const BeamModel& beams, bool adjusted) {
   std::vector<CoupledBeam> out;
   for (const BeamPart& b : beams.beams) {
     out.push_back(coupled_beam(b.system, beam_force(b, adjusted)));
+    if (!adjusted || !b.has_adjustment) {
+      out.back().C = b.system.C;
+      out.back().K = b.system.K;
+    }
     if (b.system.has_time_loads()) {
       auto system = std::make_shared<const BeamSystem>(b.system);
       out.back().time_loads = [system](double t, std::vector<NodalForce>& forces) {

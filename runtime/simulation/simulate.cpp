@@ -46,9 +46,6 @@ SimulationReport simulate(const AssembledModel& model, const SimulationRequest& 
     case ModelKind::kBeams:
       return detail::run_beams(model, request, observer);
     case ModelKind::kCoupled:
-      if (request.integrator.kind == IntegratorKind::kGeneralizedAlpha)
-        throw InvalidInput("generalized_alpha needs a linear second-order (beam) model; for coupled models use "
-                           "forward_euler, rk4, trapezoid, backward_euler, ...");
       return detail::run_coupled(model, request, observer);
   }
   throw InvalidInput("unknown kind of model");

@@ -1,0 +1,228 @@
+#include "runtime/multibody/coupled_implicit_system.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "runtime/multibody/rigid_system.h"
+
+namespace mbfe::runtime {
+
+namespace {
+
+// Central-difference step of the rigid tangents where the solver has no
+// Jacobian kernel: the cube root of machine epsilon balances truncation
+// (h^2) against round-off (eps / h), relative to the coordinate's size.
+constexpr double kDifferenceStep = 6e-6;
+
+}  // namespace
+
+CoupledImplicitSystem::CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dyn)
+    : AugmentedSystem(std::move(dyn)), springs_(dyn_->model(), dyn_->constraints()) {
+  for (const CoupledBeam& b : dyn_->beams()) {
+    if (b.mesh.num_free > 0 && (b.C.rows() != b.mesh.num_free || b.K.rows() != b.mesh.num_free)) {
+      throw std::invalid_argument("beam '" + b.mesh.name +
+                                  "': the implicit integrators take the beam's own Rayleigh C and K; "
+                                  "its adjusted operators are for explicit integrators (run it with --adjust off)");
+    }
+  }
+  const int nb = dyn_->nb(), nc = dyn_->nc();
+  is_driven_.assign(nb, false);
+  for (int d : dyn_->driven()) is_driven_[d] = true;
+  const int nd = static_cast<int>(dyn_->driven().size());
+  motion_q_.resize(nd);
+  motion_v_.resize(nd);
+  motion_a_.resize(nd);
+  mb_row_.resize(nb, nb);
+  fb_.resize(nb);
+  qb_force_.resize(nb);
+  fc_.resize(nc);
+  kb_.resize(nb, nb);
+  cb_.resize(nb, nb);
+}
+
+void CoupledImplicitSystem::rigid_residual(double t, const double* qb, const double* vb, const double* ab,
+                                           Eigen::VectorXd& tau) {
+  const int nb = dyn_->nb();
+  evaluate_dynamics(dyn_->model(), qb, vb, t, mb_row_.data(), fb_.data(), qb_force_.data());
+  tau = mb_row_ * Eigen::Map<const Eigen::VectorXd>(ab, nb) + fb_ - qb_force_;
+}
+
+void CoupledImplicitSystem::residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                     const Eigen::VectorXd& a, const Eigen::VectorXd& lambda, double c_q,
+                                     Eigen::VectorXd& r, Eigen::VectorXd& c) {
+  const int nb = dyn_->nb(), n = dyn_->n(), m = dyn_->m();
+  qm_ = q;
+  vm_ = v;
+  dyn_->impose_motion(t, qm_, vm_);
+  r.resize(n);
+  Eigen::Ref<Eigen::VectorXd> rb = r.head(nb);
+  Eigen::Ref<Eigen::VectorXd> rc = r.tail(n - nb);
+  // Rigid: M_b a + F_b - Q_b, spring forces in Q_b.
+  evaluate_dynamics(dyn_->model(), qm_.data(), vm_.data(), t, mb_row_.data(), fb_.data(), qb_force_.data());
+  fc_.setZero();
+  if (springs_.count() > 0)
+    springs_.apply(qm_.data(), qm_.data() + nb, vm_.data(), vm_.data() + nb, qb_force_, fc_);
+  rb.noalias() = mb_row_ * a.head(nb);
+  rb += fb_ - qb_force_;
+  // Beams: M_c a + C v + K q - P - (time loads, springs).
+  const std::vector<CoupledBeam>& beams = dyn_->beams();
+  const ContactConstraints& cc = dyn_->constraints();
+  for (std::size_t k = 0; k < beams.size(); ++k) {
+    const CoupledBeam& b = beams[k];
+    const int off = cc.beam_offset(static_cast<int>(k));
+    const int nk = b.mesh.num_free;
+    Eigen::Ref<Eigen::VectorXd> rk = rc.segment(off, nk);
+    rk.noalias() = b.M * a.segment(nb + off, nk);
+    rk.noalias() += b.C * v.segment(nb + off, nk);
+    rk.noalias() += b.K * q.segment(nb + off, nk);
+    rk -= b.P + fc_.segment(off, nk);
+    if (b.time_loads) {
+      b.time_loads(t, nodal_);
+      for (const NodalForce& f : nodal_) rk[f.index] -= f.value;
+    }
+  }
+  // Contacts: + G^T lambda, and the scaled constraint rows.
+  c.resize(m);
+  if (m > 0) {
+    cc.evaluate(t, qm_.data(), qm_.data() + nb, nullptr, nullptr, cv_);
+    rb.noalias() += cv_.jb.transpose() * lambda;
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < 4; ++j)
+        if (cv_.jcol(i, j) >= 0) rc[cv_.jcol(i, j)] += cv_.je(i, j) * lambda[i];
+    c = cv_.phi / c_q;
+  }
+  // Driven coordinates: their acceleration is the motion's.
+  if (!dyn_->driven().empty()) {
+    dyn_->model().motion(t, motion_q_.data(), motion_v_.data(), motion_a_.data());
+    for (std::size_t k = 0; k < dyn_->driven().size(); ++k) {
+      const int d = dyn_->driven()[k];
+      r[d] = a[d] - motion_a_[k];
+    }
+  }
+}
+
+void CoupledImplicitSystem::rigid_tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                           const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
+                                           Eigen::MatrixXd& K_b, Eigen::MatrixXd& C_b, bool force_differences) {
+  (void)force_differences;
+  const int nb = dyn_->nb(), m = dyn_->m();
+  qm_ = q;
+  vm_ = v;
+  dyn_->impose_motion(t, qm_, vm_);
+  K_b.setZero(nb, nb);
+  C_b.setZero(nb, nb);
+  const ContactConstraints& cc = dyn_->constraints();
+  for (int j = 0; j < nb; ++j) {
+    if (is_driven_[j]) continue;  // the motion overrides the state: no dependence
+    for (int pass = 0; pass < 2; ++pass) {
+      Eigen::VectorXd& x = pass == 0 ? qm_ : vm_;
+      const double x0 = x[j];
+      const double step = kDifferenceStep * (1.0 + std::abs(x0));
+      x[j] = x0 + step;
+      rigid_residual(t, qm_.data(), vm_.data(), a.data(), tau_);
+      if (pass == 0 && m > 0) {
+        cc.evaluate(t, qm_.data(), qm_.data() + nb, nullptr, nullptr, cv_);
+        tau_.noalias() += cv_.jb.transpose() * lambda;
+      }
+      x[j] = x0 - step;
+      rigid_residual(t, qm_.data(), vm_.data(), a.data(), tau2_);
+      if (pass == 0 && m > 0) {
+        cc.evaluate(t, qm_.data(), qm_.data() + nb, nullptr, nullptr, cv_);
+        tau2_.noalias() += cv_.jb.transpose() * lambda;
+      }
+      x[j] = x0;
+      (pass == 0 ? K_b : C_b).col(j) = (tau_ - tau2_) / (2.0 * step);
+    }
+  }
+}
+
+void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                      const Eigen::VectorXd& a, const Eigen::VectorXd& lambda, double c_q,
+                                      double c_v) {
+  const int nb = dyn_->nb(), n = dyn_->n(), m = dyn_->m();
+  rigid_tangents(t, q, v, a, lambda, kb_, cb_);
+  // Mass matrix and contacts at the state (rigid_tangents left the motion imposed in qm_, vm_).
+  evaluate_dynamics(dyn_->model(), qm_.data(), vm_.data(), t, mb_row_.data(), fb_.data(), qb_force_.data());
+  triplets_.clear();
+  auto add = [&](int i, int j, double value) {
+    if (i < nb && is_driven_[i]) return;  // a driven row is a_d = motion''
+    if (value != 0.0) triplets_.emplace_back(i, j, value);
+  };
+  for (int i = 0; i < nb; ++i) {
+    if (is_driven_[i]) triplets_.emplace_back(i, i, 1.0);
+    for (int j = 0; j < nb; ++j) add(i, j, mb_row_(i, j) + c_v * cb_(i, j) + c_q * kb_(i, j));
+  }
+  const std::vector<CoupledBeam>& beams = dyn_->beams();
+  const ContactConstraints& cc = dyn_->constraints();
+  for (std::size_t k = 0; k < beams.size(); ++k) {
+    const CoupledBeam& b = beams[k];
+    const int off = nb + cc.beam_offset(static_cast<int>(k));
+    for (const auto* mat : {&b.M, &b.C, &b.K}) {
+      const double scale = mat == &b.M ? 1.0 : (mat == &b.C ? c_v : c_q);
+      for (int col = 0; col < mat->outerSize(); ++col)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(*mat, col); it; ++it)
+          add(off + static_cast<int>(it.row()), off + static_cast<int>(it.col()), scale * it.value());
+    }
+  }
+  if (springs_.count() > 0) {
+    springs_.apply(qm_.data(), qm_.data() + nb, vm_.data(), vm_.data() + nb, qb_force_, fc_);
+    for (int k = 0; k < springs_.count(); ++k) {
+      const SpringGradient& g = springs_.gradient(k);
+      if (!g.pressing) continue;
+      const double w = c_q * springs_.stiffness(k) + c_v * springs_.damping(k);
+      // g over the rigid coordinates, then the 4 beam DOFs.
+      std::vector<std::pair<int, double>> entries;
+      for (int j = 0; j < nb; ++j)
+        if (g.jb[j] != 0.0) entries.emplace_back(j, g.jb[j]);
+      for (int j = 0; j < 4; ++j)
+        if (g.cols[j] >= 0 && g.je[j] != 0.0) entries.emplace_back(nb + g.cols[j], g.je[j]);
+      for (const auto& [i, gi] : entries)
+        for (const auto& [j, gj] : entries) add(i, j, w * gi * gj);
+    }
+  }
+  if (m > 0) {
+    cc.evaluate(t, qm_.data(), qm_.data() + nb, nullptr, nullptr, cv_);
+    for (int r = 0; r < m; ++r) {
+      for (int j = 0; j < nb; ++j) {
+        if (cv_.jb(r, j) == 0.0) continue;
+        triplets_.emplace_back(n + r, j, cv_.jb(r, j));
+        add(j, n + r, cv_.jb(r, j));
+      }
+      for (int j = 0; j < 4; ++j) {
+        if (cv_.jcol(r, j) < 0 || cv_.je(r, j) == 0.0) continue;
+        triplets_.emplace_back(n + r, nb + cv_.jcol(r, j), cv_.je(r, j));
+        triplets_.emplace_back(nb + cv_.jcol(r, j), n + r, cv_.je(r, j));
+      }
+    }
+  }
+  matrix_.resize(n + m, n + m);
+  matrix_.setFromTriplets(triplets_.begin(), triplets_.end());
+  lu_.analyzePattern(matrix_);
+  lu_.factorize(matrix_);
+  if (lu_.info() != Eigen::Success) {
+    std::ostringstream os;
+    os << "implicit step at t = " << t << " s: the Newton matrix is singular (" << lu_.lastErrorMessage()
+       << "); are the contacts independent?";
+    throw std::runtime_error(os.str());
+  }
+}
+
+void CoupledImplicitSystem::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& c, Eigen::VectorXd& da,
+                                  Eigen::VectorXd& dlambda) {
+  const int n = dyn_->n(), m = dyn_->m();
+  rhs_.resize(n + m);
+  rhs_.head(n) = r;
+  rhs_.tail(m) = c;
+  sol_ = lu_.solve(rhs_);
+  da = sol_.head(n);
+  dlambda = sol_.tail(m);
+}
+
+void CoupledImplicitSystem::accelerations(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                          Eigen::VectorXd& a, Eigen::VectorXd& lambda) {
+  dyn_->evaluate(t, q, v);
+  dyn_->solve_augmented(t, a, lambda);
+}
+
+}  // namespace mbfe::runtime

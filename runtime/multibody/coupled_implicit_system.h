@@ -1,0 +1,71 @@
+// A coupled model for the implicit steppers: the index-3 form of eqs (15),
+//
+//   M_b(q_b) q_b'' + F_b - Q_b + J_b^T lambda = 0
+//   M_c q_c'' + C_c q_c' + K_c q_c - P_c + J_c^T lambda = 0
+//   Phi(q_b, q_c) = 0
+//
+// as a SecondOrderSystem (second_order_system.h), y = [q_b; q_c; q_b'; q_c']
+// as in the augmented formulation (whose explicit right-hand side, initial
+// state and report it keeps). The Newton matrix keeps the structure
+// (docs/implicit-integration.md): the beams' constant sparse M, C and K as
+// they are, the rigid block dense from the closed-form Jacobian kernel of the
+// generated solver, each slider_spring as the rank-one term k g g^T
+// (c g g^T for its damper), and the contact rows G = [J_b J_c] bordering it;
+// the whole is one sparse LU.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+#include <memory>
+#include <vector>
+
+#include "runtime/integrators/second_order_system.h"
+#include "runtime/multibody/augmented_system.h"
+#include "runtime/multibody/contact_springs.h"
+
+namespace mbfe::runtime {
+
+class CoupledImplicitSystem final : public AugmentedSystem, public SecondOrderSystem {
+ public:
+  /// @throws std::invalid_argument if a beam has no sparse C and K (the
+  ///         adjusted operators of a beam with an `adjustment:` block).
+  explicit CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dyn);
+
+  int dof() const override { return dyn_->n(); }
+  int num_multipliers() const override { return dyn_->m(); }
+  void residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
+                const Eigen::VectorXd& lambda, double c_q, Eigen::VectorXd& r, Eigen::VectorXd& c) override;
+  void factorize(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
+                 const Eigen::VectorXd& lambda, double c_q, double c_v) override;
+  void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& c, Eigen::VectorXd& da,
+             Eigen::VectorXd& dlambda) override;
+  void accelerations(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, Eigen::VectorXd& a,
+                     Eigen::VectorXd& lambda) override;
+
+  /// The rigid block's tangents at (t, q_b, q_b', a_b, lambda) with q_c from
+  /// q: K_b = d(M_b a + F_b - Q_b + J_b^T lambda)/dq_b and C_b = d(F_b - Q_b)/dq_b'
+  /// (nb x nb each); the generated kernel where the solver has one, else
+  /// central differences. Public for the tests that check one by the other.
+  void rigid_tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
+                      const Eigen::VectorXd& lambda, Eigen::MatrixXd& K_b, Eigen::MatrixXd& C_b,
+                      bool force_differences = false);
+
+ private:
+  /// tau = M_b a + F_b - Q_b at the rigid coordinates given (motion imposed by the caller).
+  void rigid_residual(double t, const double* qb, const double* vb, const double* ab, Eigen::VectorXd& tau);
+
+  ContactSprings springs_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
+  std::vector<Eigen::Triplet<double>> triplets_;
+  Eigen::SparseMatrix<double> matrix_;
+  Eigen::VectorXd qm_, vm_, motion_q_, motion_v_, motion_a_;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> mb_row_;
+  Eigen::VectorXd fb_, qb_force_, fc_, tau_, tau2_, rhs_, sol_;
+  Eigen::MatrixXd kb_, cb_;
+  ConstraintValues cv_;
+  std::vector<NodalForce> nodal_;
+  std::vector<bool> is_driven_;
+};
+
+}  // namespace mbfe::runtime
