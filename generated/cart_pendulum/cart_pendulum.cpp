@@ -149,6 +149,7 @@ const mbfe_model_v1 kModel = {
     0,
     nullptr,
     nullptr,
+    nullptr,
 };
 
 }  // namespace

@@ -2539,6 +2539,7 @@ const mbfe_model_v1 kModel = {
     0,
     nullptr,
     nullptr,
+    nullptr,
 };
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "generator/symbolic/contact_kinematics.h"
 #include "generator/symbolic/cse.h"
 #include "generator/symbolic/rigid_dynamics.h"
+#include "generator/symbolic/rigid_jacobians.h"
 #include "generator/symbolic/time_functions.h"
 #include "ir/model_error.h"
 
@@ -32,6 +33,8 @@ const char* generator_version() { return MBFE_GENERATOR_VERSION; }
 
 namespace {
 GeneratedSolver generate_solver_unchecked(const ir::Model& model);
+// Largest tree that gets the closed-form Jacobian kernel (see its use).
+constexpr std::size_t kMaxJacobianCoordinates = 12;
 }  // namespace
 
 GeneratedSolver generate_solver(const ir::Model& model) {
@@ -79,6 +82,26 @@ GeneratedSolver generate_solver_unchecked(const ir::Model& model) {
     if (k != &d.dynamics) solver.operations.push_back({k->name, e.emitted, e.executed});
     else solver.fused = {k->name, e.emitted, e.executed};
     kernels << "\n" << e.text;
+  }
+  // The tangents for the implicit integrators of coupled models. Their code
+  // grows as nq^2 times the kinematics (a 20-link chain: 10,000 lines and a
+  // minute of g++ -O2), so rigid-only models and large trees go without; the
+  // runtime then takes differences of the dynamics kernel.
+  const bool with_jacobians = !model.beams.empty() && d.q.size() <= kMaxJacobianCoordinates;
+  if (with_jacobians) {
+    std::vector<GiNaC::symbol> qdd;
+    KernelParam qdd_param{"qdd", {}};
+    for (std::size_t i = 0; i < d.q.size(); ++i) {
+      qdd.emplace_back("qdd" + std::to_string(i));
+      inputs.emplace(qdd.back(), "qdd[" + std::to_string(i) + "]");
+      qdd_param.symbols.push_back(qdd.back());
+    }
+    params.push_back(qdd_param);
+    Kernel jacobians = derive_dynamics_jacobians(model, d, qdd);
+    eliminate_common_subexpressions(jacobians);
+    const EmittedKernel e = emit_kernel(jacobians, inputs, params, "static ");
+    solver.operations.push_back({jacobians.name, e.emitted, e.executed});
+    parts.jacobians = "\n" + e.text;
   }
   if (d.mass_matrix.assembly) {
     solver.assembly_pairs = d.mass_matrix.assembly->pairs();

@@ -65,7 +65,7 @@ std::string solver_source(const ir::Model& model, const GeneratedSolver& solver,
     for (std::size_t i = 0; i < parent.size(); ++i) source << (i ? ", " : "") << parent[i];
     source << "};\n";
   }
-  source << parts.kernels << parts.points << parts.contacts << parts.motion
+  source << parts.kernels << parts.jacobians << parts.points << parts.contacts << parts.motion
          << "\n// Ground-frame position of point `point` of body `body` (indices in model order).\n"
          << "void point_position(const double* q, int body, int point, double* xy) {\n";
   for (const SolverParts::PointFunction& pf : parts.point_functions)
@@ -99,7 +99,7 @@ std::string solver_source(const ir::Model& model, const GeneratedSolver& solver,
          << "    generalized_forces,\n    point_position,\n    " << contacts.size() << ",\n    "
          << (contacts.empty() ? "nullptr" : "kContacts") << ",\n    dynamics,\n    " << parts.driven.size()
          << ",\n    " << (parts.driven.empty() ? "nullptr,\n    nullptr" : "kDrivenCoordinates,\n    motion")
-         << ",\n};\n\n"
+         << ",\n    " << (parts.jacobians.empty() ? "nullptr" : "dynamics_jacobians") << ",\n};\n\n"
          << "}  // namespace\n}  // namespace " << name << "\n}  // namespace mbfe_generated\n\n"
          << "extern \"C\" const mbfe_model_v1* " << entry << "(void) { return &" << ns << "::kModel; }\n\n"
          << "#ifdef MBFE_SHARED_ENTRY  // defined when compiled into a run-time loaded library\n"

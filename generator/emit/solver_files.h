@@ -34,6 +34,7 @@ struct SolverParts {
   };
   std::vector<ContactEntry> contact_entries;
   std::string motion;               // the motion kernel; empty when no joint is driven
+  std::string jacobians;            // dynamics_jacobians: the rigid tangents
   std::vector<int> driven;          // driven coordinates, model order
 };
 

@@ -189,6 +189,11 @@ GiNaC::ex CodeList::define_canonical(const GiNaC::ex& value) {
   return lhs;
 }
 
+const GiNaC::ex* CodeList::definition(const GiNaC::ex& symbol) const {
+  const auto it = by_symbol_.find(symbol);
+  return it == by_symbol_.end() ? nullptr : &assignments_[it->second].rhs;
+}
+
 namespace {
 
 void collect_symbols(const GiNaC::ex& e, std::vector<GiNaC::ex>& out) {

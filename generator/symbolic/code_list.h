@@ -78,6 +78,9 @@ class CodeList {
 
   const std::vector<Assignment>& assignments() const { return assignments_; }
 
+  /// The value a temporary stands for; nullptr for an input symbol.
+  const GiNaC::ex* definition(const GiNaC::ex& symbol) const;
+
   /// The statements that `outputs` depend on, in definition order.
   std::vector<Assignment> closure(const std::vector<KernelOutput>& outputs) const;
 

@@ -16,7 +16,7 @@
 extern "C" {
 #endif
 
-#define MBFE_MODEL_ABI_VERSION 2
+#define MBFE_MODEL_ABI_VERSION 3
 
 /* Contact kernels, one set per contact, evaluated on one beam element.
  * Inputs: q, qd (rigid coordinates); the element's 4 local beam DOFs
@@ -72,6 +72,12 @@ typedef struct mbfe_model_v1 {
   int num_driven;
   const int* driven_coordinates;
   void (*motion)(double t, double* q, double* qd, double* qdd);
+  /* Tangents of tau = M(q) qdd + F(q, qd) - Q(q, qd, t) for implicit
+   * integrators: K[nq * nq] = d tau / dq, C[nq * nq] = d tau / dqd, row-major,
+   * at the given qdd. May be NULL in hand-written models (the runtime then
+   * takes differences). */
+  void (*dynamics_jacobians)(const double* q, const double* qd, const double* qdd, double t, double* K,
+                             double* C);
 } mbfe_model_v1;
 
 typedef const mbfe_model_v1* (*mbfe_model_entry_fn)(void);

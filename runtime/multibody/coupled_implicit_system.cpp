@@ -39,6 +39,8 @@ CoupledImplicitSystem::CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dy
   fc_.resize(nc);
   kb_.resize(nb, nb);
   cb_.resize(nb, nb);
+  jac_k_.resize(nb * nb);
+  jac_c_.resize(nb * nb);
 }
 
 void CoupledImplicitSystem::rigid_residual(double t, const double* qb, const double* vb, const double* ab,
@@ -105,7 +107,6 @@ void CoupledImplicitSystem::residual(double t, const Eigen::VectorXd& q, const E
 void CoupledImplicitSystem::rigid_tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                            const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
                                            Eigen::MatrixXd& K_b, Eigen::MatrixXd& C_b, bool force_differences) {
-  (void)force_differences;
   const int nb = dyn_->nb(), m = dyn_->m();
   qm_ = q;
   vm_ = v;
@@ -113,26 +114,42 @@ void CoupledImplicitSystem::rigid_tangents(double t, const Eigen::VectorXd& q, c
   K_b.setZero(nb, nb);
   C_b.setZero(nb, nb);
   const ContactConstraints& cc = dyn_->constraints();
+  const auto kernel = dyn_->model().dynamics_jacobians;
+  if (kernel != nullptr && !force_differences) {
+    // Closed form (row-major from the kernel), then d(J_b^T lambda)/dq_b below.
+    kernel(qm_.data(), vm_.data(), a.data(), t, jac_k_.data(), jac_c_.data());
+    K_b = Eigen::Map<const RowMajor>(jac_k_.data(), nb, nb);
+    C_b = Eigen::Map<const RowMajor>(jac_c_.data(), nb, nb);
+  }
   for (int j = 0; j < nb; ++j) {
-    if (is_driven_[j]) continue;  // the motion overrides the state: no dependence
+    if (is_driven_[j]) {
+      // The motion overrides the state: the driven coordinate moves nothing.
+      K_b.col(j).setZero();
+      C_b.col(j).setZero();
+      continue;
+    }
     for (int pass = 0; pass < 2; ++pass) {
+      const bool closed_form = kernel != nullptr && !force_differences;
+      if (closed_form && (pass == 1 || m == 0)) continue;
       Eigen::VectorXd& x = pass == 0 ? qm_ : vm_;
       const double x0 = x[j];
       const double step = kDifferenceStep * (1.0 + std::abs(x0));
       x[j] = x0 + step;
-      rigid_residual(t, qm_.data(), vm_.data(), a.data(), tau_);
+      if (closed_form) tau_.setZero(nb);
+      else rigid_residual(t, qm_.data(), vm_.data(), a.data(), tau_);
       if (pass == 0 && m > 0) {
         cc.evaluate(t, qm_.data(), qm_.data() + nb, nullptr, nullptr, cv_);
         tau_.noalias() += cv_.jb.transpose() * lambda;
       }
       x[j] = x0 - step;
-      rigid_residual(t, qm_.data(), vm_.data(), a.data(), tau2_);
+      if (closed_form) tau2_.setZero(nb);
+      else rigid_residual(t, qm_.data(), vm_.data(), a.data(), tau2_);
       if (pass == 0 && m > 0) {
         cc.evaluate(t, qm_.data(), qm_.data() + nb, nullptr, nullptr, cv_);
         tau2_.noalias() += cv_.jb.transpose() * lambda;
       }
       x[j] = x0;
-      (pass == 0 ? K_b : C_b).col(j) = (tau_ - tau2_) / (2.0 * step);
+      (pass == 0 ? K_b : C_b).col(j) += (tau_ - tau2_) / (2.0 * step);
     }
   }
 }

@@ -45,8 +45,10 @@ class CoupledImplicitSystem final : public AugmentedSystem, public SecondOrderSy
 
   /// The rigid block's tangents at (t, q_b, q_b', a_b, lambda) with q_c from
   /// q: K_b = d(M_b a + F_b - Q_b + J_b^T lambda)/dq_b and C_b = d(F_b - Q_b)/dq_b'
-  /// (nb x nb each); the generated kernel where the solver has one, else
-  /// central differences. Public for the tests that check one by the other.
+  /// (nb x nb each): the generated kernel `dynamics_jacobians` where the
+  /// solver has one (and not force_differences), else central differences;
+  /// the contact term d(J_b^T lambda)/dq_b by central differences of the
+  /// contact kernels either way. Public for the tests that check one by the other.
   void rigid_tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
                       const Eigen::VectorXd& lambda, Eigen::MatrixXd& K_b, Eigen::MatrixXd& C_b,
                       bool force_differences = false);
@@ -63,6 +65,8 @@ class CoupledImplicitSystem final : public AugmentedSystem, public SecondOrderSy
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> mb_row_;
   Eigen::VectorXd fb_, qb_force_, fc_, tau_, tau2_, rhs_, sol_;
   Eigen::MatrixXd kb_, cb_;
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  std::vector<double> jac_k_, jac_c_;  // the kernel's row-major output
   ConstraintValues cv_;
   std::vector<NodalForce> nodal_;
   std::vector<bool> is_driven_;
