@@ -51,6 +51,9 @@ Options:
                      |Phi| closed by Newton at every step) or augmented
                      (multipliers; a cross-check, |Phi| drifts)
   --rho-inf R        generalized_alpha spectral radius at infinity (0..1)
+                     (coupled models: generalized_alpha, trapezoid, backward_euler
+                     and bdf2 run the original model in index-3 form with a
+                     modified Newton iteration; docs/implicit-integration.md)
   --start static     start from the static equilibrium at t = 0 of everything
                      not driven (as `initial: {static: true}`); --start given
                      starts from `initial:` as written
