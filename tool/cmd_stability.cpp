@@ -1,7 +1,8 @@
 // `mbfe stability MODEL.yaml [--json]`: the largest stable step of every
 // integrator for the original and the adjusted model (beam models; coupled
 // models through their linearised, partitioned system at the initial state;
-// rigid-only models through their linearised ODE at the initial state).
+// rigid-only models through their linearised ODE at the initial state, or at
+// the static equilibrium when the initial state is not one).
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -34,7 +35,11 @@ of y' = f(t, y), y = [q; q'], f = [q'; M(q)^-1 (Q - F)], linearised at the
 initial state: a local estimate (the limits change as the motion moves away
 from that state), with no adjusted model. Away from an equilibrium (rigid or
 coupled models) some eigenvalues have Re > 0 (the motion itself leaves that
-state); they are counted and left out, the limits come from the others.
+state); they are counted and left out, the limits come from the others. A
+rigid model released away from equilibrium swings about it: it is linearised
+at the static equilibrium its damped motion settles into instead (the report
+says so). A "none" is explained under the table (an undamped mode, for forward
+Euler and AB2).
 
   forward_euler      |1 + h lambda| <= 1: h < -2 Re(lambda) / |lambda|^2
   rk4                |R(h lambda)| <= 1 along each eigenvalue's ray (2.785/|lambda| on the real axis)
@@ -117,7 +122,15 @@ int cmd_stability(const Args& args) {
     if (s.eigenvalues.back().imag() != 0.0) o << " +- " << std::abs(s.eigenvalues.back().imag()) << "i";
     return o.str();
   };
-  if (rigid)
+  if (rigid && original_spectrum.at_equilibrium)
+    std::cout << "model '" << model.ir().name << "': rigid, " << dof << " DOF, " << 2 * dof
+              << " state eigenvalues of the ODE linearised at its static equilibrium\n"
+              << "  (the initial state is not one: " << original_spectrum.growing_at_start
+              << " eigenvalues there have Re > 0, and their mirror images would set limits the motion "
+                 "does not keep; released from there it swings about the equilibrium, whose modes set "
+                 "the limits. Still a local estimate: large swings change them. A rigid model has no "
+                 "damping adjustment)\n";
+  else if (rigid)
     std::cout << "model '" << model.ir().name << "': rigid, " << dof << " DOF, " << 2 * dof
               << " state eigenvalues of the ODE linearised at the initial state\n"
               << "  (a local estimate: the limits change as the motion moves away from that state; "
@@ -127,6 +140,8 @@ int cmd_stability(const Args& args) {
               << " state eigenvalues (" << dof << " independent coordinates)\n";
   else if (!rigid)
     std::cout << "model '" << model.ir().name << "': " << dof << " DOF, " << 2 * dof << " state eigenvalues\n";
+  if (coupled && growing > 0)
+    std::cout << "  (a local estimate: the limits change as the motion moves away from the initial state)\n";
   if (growing > 0)
     std::cout << "  " << growing << " eigenvalue" << (growing == 1 ? " has" : "s have")
               << " Re > 0: the motion leaves the initial state (not an equilibrium), and every "
@@ -150,6 +165,26 @@ int cmd_stability(const Args& args) {
         std::snprintf(buf, sizeof buf, "(%.0fx)", a.h / o.h);
         std::cout << buf;
       }
+    }
+    std::cout << "\n";
+  }
+  // Say why a method has no stable step: an undamped mode for forward Euler
+  // (its region touches the imaginary axis only at 0) and for every method
+  // off that axis, a damped one for the explicit midpoint rule.
+  for (const runtime::StepLimitRow& row : limits) {
+    if (row.original.kind != runtime::StepLimit::Kind::kNone) continue;
+    const std::complex<double> l = row.original.critical;
+    if (l.real() > 0.0) continue;  // counted above as growing
+    std::cout << "  " << row.integrator.name << " none: ";
+    if (l.real() == 0.0) {
+      std::cout << "an undamped mode (lambda = +-" << std::setprecision(5) << std::abs(l.imag())
+                << "i 1/s): the method's stability region touches the imaginary axis only at 0, so every "
+                   "step makes it grow";
+      if (row.integrator.kind == runtime::IntegratorKind::kForwardEuler)
+        std::cout << " (by sqrt(1 + (h omega)^2) a step: it doubles in about 1.4 / (h omega^2) s)";
+    } else {
+      std::cout << "a damped mode (lambda = " << std::setprecision(5) << l.real() << " +- " << std::abs(l.imag())
+                << "i 1/s) lies off the imaginary axis, the only part of its stability region";
     }
     std::cout << "\n";
   }

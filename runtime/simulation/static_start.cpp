@@ -146,4 +146,36 @@ void rigid_static_state(const ir::Model& model, RigidSystem& system, Eigen::Vect
   }
 }
 
+bool rigid_settled_state(const ir::Model& model, RigidSystem& system, double omega_min, double omega_max,
+                         Eigen::VectorXd& y) {
+  // Settled once the rates are this small against the motion's scale.
+  constexpr double kSettledRate = 1e-6;
+  // At most this many periods of the slowest mode: a damped mode settles in a few.
+  constexpr double kMaxPeriods = 200.0;
+  if (!(omega_min > 0.0) || !(omega_max >= omega_min) || !std::isfinite(omega_max)) return false;
+  const int n = system.num_coordinates();
+  const double h = 0.5 / omega_max;
+  const double c = 2.0 * omega_min;
+  const long max_steps = static_cast<long>(kMaxPeriods * 2.0 * M_PI / omega_min / h);
+  Eigen::VectorXd state = y, ydot;
+  state.tail(n).setZero();
+  system.impose_motion(0.0, state);
+  for (long k = 0; k < max_steps; ++k) {
+    // Semi-implicit Euler with the damping -c q' taken implicitly.
+    system.rhs(0.0, state, ydot);
+    state.tail(n) = (state.tail(n) + h * ydot.tail(n)) / (1.0 + h * c);
+    state.head(n) += h * state.tail(n);
+    system.impose_motion(0.0, state);
+    if (!state.allFinite()) return false;
+    if (state.tail(n).cwiseAbs().maxCoeff() * h <= kSettledRate * h * omega_min * (1.0 + state.head(n).norm())) break;
+  }
+  try {
+    rigid_static_state(model, system, state);
+  } catch (const std::exception&) {
+    return false;
+  }
+  y = state;
+  return true;
+}
+
 }  // namespace mbfe::runtime

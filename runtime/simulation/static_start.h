@@ -48,4 +48,13 @@ void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::V
 /// @throws ir::ModelError at `model.initial.loc` when there is none.
 void rigid_static_state(const ir::Model& model, RigidSystem& system, Eigen::VectorXd& y);
 
+/// A stable static equilibrium of a rigid model near y = [q; q'] (the
+/// minimum of its potential the motion from y, damped, settles into; a
+/// Newton solve alone may land on an unstable one, a pendulum upside down):
+/// dynamic relaxation with the damping 2 omega_min and steps 0.5 / omega_max,
+/// omega_* the scales of the model's modes, then rigid_static_state from the
+/// settled state. Returns false (y unchanged) when it does not settle.
+bool rigid_settled_state(const ir::Model& model, RigidSystem& system, double omega_min, double omega_max,
+                         Eigen::VectorXd& y);
+
 }  // namespace mbfe::runtime

@@ -1,5 +1,8 @@
 #include "runtime/stability/model_spectrum.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "runtime/multibody/linearization.h"
 #include "runtime/multibody/multibody_errors.h"
 #include "runtime/simulation/invalid_input.h"
@@ -44,7 +47,24 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
         y0 << q0, qd0;
         system.impose_motion(0.0, y0);
         if (static_start) rigid_static_state(model.ir(), system, y0);
-        return from_linearization(linearized_spectrum(system, 0.0, y0), n);
+        ModelSpectrum at_start = from_linearization(linearized_spectrum(system, 0.0, y0), n);
+        if (static_start || at_start.growing == 0) return at_start;
+        // Not an equilibrium: the motion swings about the nearest one.
+        Eigen::VectorXd equilibrium = y0;
+        double omega_min = 0.0, omega_max = 0.0;
+        for (const auto& l : at_start.full.eigenvalues) {
+          const double w = std::abs(l);
+          if (w == 0.0) continue;
+          omega_min = omega_min == 0.0 ? w : std::min(omega_min, w);
+          omega_max = std::max(omega_max, w);
+        }
+        // None (a mechanism, a free body): the local estimate is all there is.
+        if (!rigid_settled_state(model.ir(), system, omega_min, omega_max, equilibrium)) return at_start;
+        ModelSpectrum out = from_linearization(linearized_spectrum(system, 0.0, equilibrium), n);
+        if (out.growing > 0) return at_start;  // an unstable equilibrium (inverted pendulum) tells less
+        out.at_equilibrium = true;
+        out.growing_at_start = at_start.growing;
+        return out;
       }
       case ModelKind::kCoupled: {
         const std::shared_ptr<CoupledDynamics> dynamics = model.make_dynamics(adjusted);

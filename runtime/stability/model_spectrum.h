@@ -3,13 +3,21 @@
 // model.
 //
 //   beams    the eigenvalues of eq (28) of every beam (modal, exact)
-//   rigid    y' = f(t, y), y = [q; q'], linearised at the initial state
+//   rigid    y' = f(t, y), y = [q; q'], linearised at the initial state, or
+//            at the static equilibrium when the initial state is not one
+//            (below)
 //   coupled  the partitioned system (eqs (16)-(17)) linearised at the initial
 //            state (runtime/multibody/linearization.h)
 //
 // A linearisation away from an equilibrium has eigenvalues with Re > 0 (the
 // motion itself leaves that state); they are counted and left out of the
-// limits (split_growing).
+// limits (split_growing). For a rigid model that is not where its limits are
+// set: released from rest away from equilibrium, it swings about the
+// equilibrium, and there its modes oscillate (an undamped one gives forward
+// Euler no stable step at all, which the mirror image -sigma of a growing
+// eigenvalue +sigma at the initial state hides). So a rigid model whose
+// initial state has growing eigenvalues is linearised at its static
+// equilibrium instead, when it has one (docs/damping-adjustment.md).
 #pragma once
 
 #include <optional>
@@ -30,6 +38,10 @@ struct ModelSpectrum {
   /// the independent coordinates of the partitioned system (coupled).
   int coordinates = 0;
   bool linearized = false;  // rigid and coupled: local, at the initial state
+  /// Rigid: linearised at the static equilibrium, not at the initial state,
+  /// which has `growing_at_start` eigenvalues with Re > 0.
+  bool at_equilibrium = false;
+  int growing_at_start = 0;
 };
 
 /// The spectrum of `model`, original or with its adjusted beams.

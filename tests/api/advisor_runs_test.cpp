@@ -1,0 +1,166 @@
+// The stability advisor's limits against runs: for each case, a run just
+// below the reported limit stays bounded and one just above it grows (or, for
+// "none", a run at a small step grows all the same).
+//
+// Nonlinear models do not diverge to infinity above a linear limit: a
+// pendulum mode that grows swings wider, its frequency drops, and the growth
+// saturates. So growth is read as the amplitude late in the run against its
+// amplitude at the start.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "api/mbfe.h"
+
+namespace mbfe {
+namespace {
+
+class Rows : public runtime::SimulationObserver {
+ public:
+  void row(const runtime::OutputRow& row) override { values.push_back(row.values); }
+  std::vector<std::vector<double>> values;
+};
+
+runtime::SimulationReport run(const Model& model, const char* integrator, double step, double t_end, Rows& rows) {
+  runtime::SimulationRequest r;
+  r.integrator = runtime::parse_integrator(integrator);
+  r.step = step;
+  r.t_end = t_end;
+  r.every = 1;
+  r.handle_sigint = false;
+  return model.simulate(r, rows);
+}
+
+runtime::StepLimit limit(const Model& model, const char* integrator) {
+  for (const runtime::StepLimitRow& row : model.step_limits())
+    if (row.integrator.name == integrator) return row.original;
+  ADD_FAILURE() << "no row " << integrator;
+  return {};
+}
+
+/// Largest |column - centre| over rows with t <= t_until, and over the last tenth of the rows.
+std::pair<double, double> start_and_end_amplitude(const Rows& rows, int column, double centre, double t_until) {
+  double start = 0.0, end = 0.0;
+  const std::size_t tail = rows.values.size() - rows.values.size() / 10;
+  for (std::size_t i = 0; i < rows.values.size(); ++i) {
+    const double a = std::abs(rows.values[i][column] - centre);
+    if (rows.values[i][0] <= t_until) start = std::max(start, a);
+    if (i >= tail) end = std::max(end, a);
+  }
+  return {start, end};
+}
+
+// The shipped double pendulum, released 0.05 rad from its stable equilibrium:
+// small swings, where the linearisation holds.
+std::string small_swing_pendulum() {
+  return R"yaml(model: double_pendulum_small
+gravity: [0, -9.81]
+bodies:
+  - {name: link1, parent: ground, joint: {type: revolute, at: [0, 0]}, mass: 1.0, inertia: 0.08333333333333333,
+     com: [0.5, 0], points: {tip: [1.0, 0]}}
+  - {name: link2, parent: link1, joint: {type: revolute, at: [1.0, 0]}, mass: 1.0, inertia: 0.08333333333333333,
+     com: [0.5, 0]}
+initial: {q: {link1: -1.5207963267948966}}
+)yaml";
+}
+
+// Growth factors read as "bounded" and "grows": well apart from 1 so that
+// neither the start-up nor the saturation decides.
+constexpr double kGrows = 3.0;
+
+TEST(AdvisorRuns, DoublePendulumHasNoForwardEulerStepAndRk4HoldsJustBelowItsLimit) {
+  const Model model = Model::parse(small_swing_pendulum(), "double_pendulum_small.yaml");
+  // link2's angle relative to link1: 0 at the equilibrium and at the start.
+  constexpr int kLink2 = 2;
+  const runtime::StepLimit fe = limit(model, "forward_euler");
+  EXPECT_EQ(fe.kind, runtime::StepLimit::Kind::kNone);
+  EXPECT_EQ(fe.critical.real(), 0.0);  // an undamped mode, the reason
+  {
+    // "none": even at a step 40x below RK4's limit the swing grows.
+    Rows rows;
+    run(model, "forward_euler", 0.01, 30.0, rows);
+    const auto [start, end] = start_and_end_amplitude(rows, kLink2, 0.0, 3.0);
+    EXPECT_GT(end, kGrows * start);
+  }
+  const runtime::StepLimit rk4 = limit(model, "rk4");
+  ASSERT_EQ(rk4.kind, runtime::StepLimit::Kind::kFinite);
+  // The swing's amplitude in the first 3 s of the run below the limit is the
+  // scale both runs are read against (above the limit it grows within 3 s).
+  double start = 0.0;
+  {
+    Rows rows;
+    run(model, "rk4", 0.95 * rk4.h, 400.0, rows);
+    double end = 0.0;
+    std::tie(start, end) = start_and_end_amplitude(rows, kLink2, 0.0, 3.0);
+    EXPECT_LT(end, start) << "h = 0.95 x " << rk4.h;
+  }
+  {
+    Rows rows;
+    run(model, "rk4", 1.05 * rk4.h, 400.0, rows);
+    const double end = start_and_end_amplitude(rows, kLink2, 0.0, 3.0).second;
+    EXPECT_GT(end, kGrows * start) << "h = 1.05 x " << rk4.h;
+  }
+}
+
+TEST(AdvisorRuns, ARigidModelAwayFromEquilibriumIsJudgedAtItsEquilibrium) {
+  // The shipped double pendulum starts near horizontal: at that state the
+  // linearisation has +-sigma pairs, and the mirror image -sigma alone once
+  // gave forward Euler 0.51 s, where a run at 0.1 s diverges.
+  const Model model = Model::load(std::string(MBFE_SOURCE_DIR) + "/models/double_pendulum.yaml");
+  const runtime::ModelSpectrum spectrum = model.spectrum(false);
+  EXPECT_TRUE(spectrum.at_equilibrium);
+  EXPECT_EQ(spectrum.growing_at_start, 2);
+  EXPECT_EQ(limit(model, "forward_euler").kind, runtime::StepLimit::Kind::kNone);
+  Rows rows;
+  const runtime::SimulationReport report = run(model, "forward_euler", 0.1, 10.0, rows);
+  EXPECT_FALSE(report.message.empty()) << "forward Euler at 0.1 s should diverge";
+}
+
+TEST(AdvisorRuns, CoupledChainOnACantileverDivergesJustAboveTheLimitOnly) {
+  // Three links hinged in a zig-zag, the last one's tip pinned to the free end
+  // of a clamped cantilever (10 elements, Rayleigh damping): the limit is set
+  // by a damped beam mode, the motion starts away from equilibrium.
+  const Model model = Model::parse(R"yaml(model: cantilever_chain
+gravity: [0, -9.81]
+bodies:
+  - {name: link1, parent: ground, joint: {type: revolute, at: [0.9469032985320074, 1.3510876690304123]},
+     mass: 1.0, inertia: 0.02, com: [0.25, 0], points: {tip: [0.5, 0]}}
+  - {name: link2, parent: link1, joint: {type: revolute, at: [0.5, 0]}, mass: 1.0, inertia: 0.02,
+     com: [0.25, 0], points: {tip: [0.5, 0]}}
+  - {name: link3, parent: link2, joint: {type: revolute, at: [0.5, 0]}, mass: 1.0, inertia: 0.02,
+     com: [0.25, 0], points: {tip: [0.5, 0]}}
+beams:
+  - name: cantilever
+    origin: [0.0, 0.0]
+    angle: 0.0
+    length: 1.0
+    elements: 10
+    section: {shape: square, side: 0.01}
+    material: {youngs_modulus: 2.1e11, density: 7860}
+    supports: [{at: 0.0, type: clamped}]
+    damping: {rayleigh: {alpha: 1.0e-2, beta: 2.0e-5}}
+contacts:
+  - {name: tip_pin, type: pin, body: link3, point: tip, beam: cantilever, at: 1.0}
+initial: {q: {link1: -1.0, link2: -0.5, link3: -0.6}}
+)yaml",
+                                   "cantilever_chain.yaml");
+  const runtime::StepLimit fe = limit(model, "forward_euler");
+  ASSERT_EQ(fe.kind, runtime::StepLimit::Kind::kFinite);
+  {
+    Rows rows;
+    const runtime::SimulationReport below = run(model, "forward_euler", 0.9 * fe.h, 0.3, rows);
+    EXPECT_TRUE(below.message.empty()) << below.message;
+  }
+  {
+    Rows rows;
+    const runtime::SimulationReport above = run(model, "forward_euler", 1.1 * fe.h, 0.3, rows);
+    EXPECT_EQ(above.run.status, runtime::SimulationStatus::kDiverged);
+  }
+}
+
+}  // namespace
+}  // namespace mbfe
