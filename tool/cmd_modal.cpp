@@ -15,6 +15,7 @@
 #include "tool/commands.h"
 #include "tool/modal_report.h"
 #include "tool/plot_spectrum.h"
+#include "runtime/stability/step_limits.h"
 
 namespace mbfe::tool {
 
@@ -44,7 +45,9 @@ Options:
   --modes K     modes found by the sparse path for beams above 2000 DOF (default 20)
   --plot FILE.png  draw the original and adjusted eigenvalues in the complex
                 plane (-Re on a log axis) with forward Euler's stability
-                region for the step --step (needs gnuplot)
+                region for the step --step (needs gnuplot); a coupled model
+                draws its coupled spectrum; eigenvalues with Re >= 0 sit on
+                the marked left edge
   --step H      step for --plot's stability region (default: forward Euler's
                 limit of the adjusted model, or of the original without one)
 
@@ -112,36 +115,51 @@ int cmd_modal(const Args& args) {
   const auto step = parsed.number("step");
   if (step && !(*step > 0)) throw UsageError("--step must be > 0 s");
   if (step && !parsed.has("plot")) throw UsageError("--step goes with --plot FILE.png");
-  if (const auto plot = parsed.value("plot")) {
-    if (plot->empty()) throw UsageError("--plot needs a file name");
-    SpectrumPlot picture;
-    picture.title = "model '" + m.name + "'";
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      const std::string prefix = results.size() > 1 ? results[i].system.name + " " : "";
-      picture.series.push_back({prefix + "original", results[i].original_spectrum.eigenvalues});
-      if (results[i].has_adjustment)
-        picture.series.push_back({prefix + "adjusted", results[i].adjusted_spectrum.eigenvalues});
-    }
-    // Default step: the forward-Euler limit of the (first) adjusted spectrum.
-    double h = 0.0;
-    for (std::size_t i = 0; i < results.size() && h == 0.0; ++i)
-      h = results[i].has_adjustment ? results[i].adjusted_spectrum.h_max_forward_euler : 0.0;
-    if (h == 0.0 || !std::isfinite(h)) h = results.front().original_spectrum.h_max_forward_euler;
-    picture.step = step.value_or(h);
-    const int status = draw_spectrum_plot(picture, *plot);
-    if (status != 0) return status;
-  }
-
   // A coupled model (bodies + beams): also the linearised, partitioned system
   // at the initial state (runtime/multibody/linearization.h), original and adjusted.
   const bool coupled = !m.bodies.empty() && !beam_name;
-  runtime::StateSpectrum coupled_original, coupled_adjusted;
+  runtime::ModelSpectrum coupled_original_model, coupled_adjusted_model;
   bool coupled_any_adjustment = false;
   if (coupled) {
     for (const ir::Beam& b : m.beams) coupled_any_adjustment = coupled_any_adjustment || b.adjustment.active();
     const Model model = Model::load(path);
-    coupled_original = model.spectrum(false).full;
-    if (coupled_any_adjustment) coupled_adjusted = model.spectrum(true).full;
+    coupled_original_model = model.spectrum(false);
+    if (coupled_any_adjustment) coupled_adjusted_model = model.spectrum(true);
+  }
+  const runtime::StateSpectrum& coupled_original = coupled_original_model.full;
+  const runtime::StateSpectrum& coupled_adjusted = coupled_adjusted_model.full;
+
+  if (const auto plot = parsed.value("plot")) {
+    if (plot->empty()) throw UsageError("--plot needs a file name");
+    SpectrumPlot picture;
+    double h = 0.0;
+    if (coupled) {
+      // The coupled system is what a run steps: its spectrum and its limit,
+      // not the beams' alone.
+      picture.title = "model '" + m.name + "', coupled system at the initial state";
+      picture.series.push_back({"original", coupled_original.eigenvalues});
+      if (coupled_any_adjustment) picture.series.push_back({"adjusted", coupled_adjusted.eigenvalues});
+      const runtime::ModelSpectrum& limiting = coupled_any_adjustment ? coupled_adjusted_model : coupled_original_model;
+      const runtime::StepLimit fe =
+          runtime::stable_step(runtime::parse_integrator("forward_euler"), limiting.limiting.eigenvalues);
+      if (fe.kind == runtime::StepLimit::Kind::kFinite) h = fe.h;
+    } else {
+      picture.title = "model '" + m.name + "'";
+      for (std::size_t i = 0; i < results.size(); ++i) {
+        const std::string prefix = results.size() > 1 ? results[i].system.name + " " : "";
+        picture.series.push_back({prefix + "original", results[i].original_spectrum.eigenvalues});
+        if (results[i].has_adjustment)
+          picture.series.push_back({prefix + "adjusted", results[i].adjusted_spectrum.eigenvalues});
+      }
+      // Default step: the forward-Euler limit of the (first) adjusted spectrum.
+      for (std::size_t i = 0; i < results.size() && h == 0.0; ++i)
+        h = results[i].has_adjustment ? results[i].adjusted_spectrum.h_max_forward_euler : 0.0;
+      if (h == 0.0 || !std::isfinite(h)) h = results.front().original_spectrum.h_max_forward_euler;
+    }
+    if (!std::isfinite(h)) h = 0.0;
+    picture.step = step.value_or(h);
+    const int status = draw_spectrum_plot(picture, *plot);
+    if (status != 0) return status;
   }
 
   if (parsed.has("json")) {
@@ -172,12 +190,21 @@ int cmd_modal(const Args& args) {
               << "state; the contacts couple the beams to the bodies\n";
     std::cout << "original (Rayleigh)\n";
     for (const std::string& line : spectrum_table_lines(coupled_original, parsed.has("all"))) std::cout << line << "\n";
-    std::cout << "summary: " << spectrum_summary(coupled_original, dof) << "\n";
+    // The limits from the eigenvalues `mbfe stability` takes (growth away
+    // from equilibrium left out, and said).
+    auto growing_note = [](const runtime::ModelSpectrum& sp) {
+      return sp.growing > 0 ? "; " + std::to_string(sp.growing) +
+                                  " eigenvalues with Re > 0 (the motion leaves the initial state) left out of h_max"
+                            : std::string();
+    };
+    std::cout << "summary: " << spectrum_summary(coupled_original_model.limiting, dof)
+              << growing_note(coupled_original_model) << "\n";
     if (coupled_any_adjustment) {
       std::cout << "adjusted\n";
       for (const std::string& line : spectrum_table_lines(coupled_adjusted, parsed.has("all")))
         std::cout << line << "\n";
-      std::cout << "summary: " << spectrum_summary(coupled_adjusted, dof) << "\n";
+      std::cout << "summary: " << spectrum_summary(coupled_adjusted_model.limiting, dof)
+                << growing_note(coupled_adjusted_model) << "\n";
     }
   }
   return 0;

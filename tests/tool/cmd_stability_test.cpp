@@ -132,6 +132,35 @@ TEST(CmdPlot, DrawsOrExplains) {
   EXPECT_EQ(std::string(magic + 1, 3), "PNG");
 }
 
+TEST(CmdModal, CoupledPlotDrawsEveryEigenvalueWithoutPlotterWarnings) {
+  // The double pendulum on the beam starts away from equilibrium: two
+  // eigenvalues with Re > 0, which the log axis of -Re cannot hold. They go on
+  // the marked line; gnuplot used to say "Skipping data file with no valid
+  // points" on the terminal.
+  if (system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
+  const std::string png = tmp("coupled_spectrum.png");
+  std::remove(png.c_str());
+  const CliRun r = run_cli("modal models/double_pendulum_beam.yaml --plot '" + png + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("mbfe modal: wrote"), std::string::npos) << r.err;
+  for (const char* leak : {"Skipping", "warning", "Warning", "gnuplot>"})
+    EXPECT_EQ(r.err.find(leak), std::string::npos) << leak << " in: " << r.err;
+  std::ifstream f(png, std::ios::binary);
+  char magic[4] = {};
+  f.read(magic, 4);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+  // A beam without damping: every eigenvalue has Re = 0 (gnuplot once failed
+  // on the empty log range).
+  const std::string yaml = tmp("undamped_beam.yaml");
+  std::ofstream(yaml) << "model: undamped_beam\nbeams:\n  - {name: b, origin: [0, 0], angle: 0, length: 1.0, "
+                         "elements: 6, section: {shape: square, side: 0.01},\n     material: {youngs_modulus: 2.1e11, "
+                         "density: 7860}, supports: [{at: 0, type: pinned}, {at: 1.0, type: pinned}]}\n";
+  const CliRun undamped = run_cli("modal '" + yaml + "' --plot '" + png + "'");
+  ASSERT_EQ(undamped.status, 0) << undamped.err;
+  for (const char* leak : {"Skipping", "warning", "range"})
+    EXPECT_EQ(undamped.err.find(leak), std::string::npos) << leak << " in: " << undamped.err;
+}
+
 TEST(CmdModal, AdjustedBlock) {
   const CliRun r = run_cli("modal models/paper_beam.yaml --json");
   ASSERT_EQ(r.status, 0) << r.err;
