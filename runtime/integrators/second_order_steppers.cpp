@@ -158,9 +158,15 @@ class SecondOrderStepper final : public Stepper {
       const double da = da_.norm();
       q_ = q_pred_ + c_q * a_;
       v_ = v_pred_ + c_v * a_;
-      const double correction = std::max(c_q * da / (1.0 + q_.norm()), c_v * da / (1.0 + v_.norm()));
+      const double position = c_q * da / (1.0 + q_.norm());
+      const double correction = std::max(position, c_v * da / (1.0 + v_.norm()));
       if (!std::isfinite(correction)) return false;
-      if (correction <= kNewtonTol) {
+      // Converged; or the positions have, and the rates' correction has stopped
+      // shrinking: at small steps the constraint rows (Phi / c_q) turn the
+      // round-off of Phi into an acceleration noise ~ eps |q| / c_q, a floor
+      // under the rates' correction that no iteration lowers.
+      const bool at_noise_floor = it > 0 && position <= kNewtonTol && correction > kSlowContraction * previous;
+      if (correction <= kNewtonTol || at_noise_floor) {
         if (!fresh && it + 1 > kRefreshAfterIterations) refresh_ = true;  // for the next step
         return true;
       }
