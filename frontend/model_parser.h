@@ -94,6 +94,7 @@ class ModelParser {
   int node_at(const MapView& view, const Field& field, const Beam& beam) const;
 
   std::vector<Support> parse_supports(const MapView& beam_view, const Field& field, const Beam& beam);
+  std::vector<BeamPointMass> parse_point_masses(const MapView& beam_view, const Field& field, const Beam& beam);
 
   void parse_damping(const MapView& view, Beam& beam);
 

@@ -20,7 +20,7 @@ void ModelParser::parse_beams(const MapView& top, const Field& field) {
 
 Beam ModelParser::parse_beam(const MapView& view) {
   view.allow({"name", "origin", "angle", "length", "elements", "section", "material", "supports",
-              "damping", "loads", "adjustment", "mass"});
+              "damping", "loads", "adjustment", "mass", "tension", "masses"});
   Beam beam;
   beam.loc = view.loc();
   const Field& name = view.require("name");
@@ -33,6 +33,8 @@ Beam ModelParser::parse_beam(const MapView& view) {
   beam.elements = parse_elements(view, view.require("elements"));
   parse_section(view.sub(view.require("section")), beam);
   parse_material(view.sub(view.require("material")), beam);
+  beam.tension = at_least_or(view, "tension", 0.0);
+  if (const Field* masses = view.find("masses")) beam.masses = parse_point_masses(view, *masses, beam);
   if (const Field* supports = view.find("supports")) {
     beam.supports = parse_supports(view, *supports, beam);
   }
@@ -130,14 +132,21 @@ std::vector<Support> ModelParser::parse_supports(const MapView& beam_view, const
     const MapView view(file_, items[i],
                        "beam " + quoted(beam.name) + ": support #" + std::to_string(i + 1), "",
                        field.value_loc);
-    view.allow({"at", "type"});
     Support support;
     support.loc = view.loc();
     const Field& at = view.require("at");
     support.at = view.number(at);
-    support.type = view.choice(view.require("type"), {"pinned", "clamped"}) == 0
-                       ? SupportType::kPinned
-                       : SupportType::kClamped;
+    constexpr SupportType kTypes[] = {SupportType::kPinned, SupportType::kClamped, SupportType::kSpring};
+    support.type = kTypes[view.choice(view.require("type"), {"pinned", "clamped", "spring"})];
+    if (support.type == SupportType::kSpring) {
+      // An elastic support: spring and damper to the ground on w, a lumped mass at the node.
+      view.allow({"at", "type", "stiffness", "damping", "mass"});
+      support.stiffness = view.positive(view.require("stiffness"));
+      support.damping = at_least_or(view, "damping", 0.0);
+      support.mass = at_least_or(view, "mass", 0.0);
+    } else {
+      view.allow({"at", "type"});
+    }
     support.node = node_at(view, at, beam);
     for (const Support& earlier : supports) {
       if (earlier.node == support.node) {
@@ -149,6 +158,25 @@ std::vector<Support> ModelParser::parse_supports(const MapView& beam_view, const
     supports.push_back(support);
   }
   return supports;
+}
+
+std::vector<BeamPointMass> ModelParser::parse_point_masses(const MapView& beam_view, const Field& field,
+                                                           const Beam& beam) {
+  std::vector<BeamPointMass> masses;
+  const auto items = beam_view.list(field);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const MapView view(file_, items[i],
+                       "beam " + quoted(beam.name) + ": mass #" + std::to_string(i + 1), "", field.value_loc);
+    view.allow({"at", "mass"});
+    BeamPointMass m;
+    m.loc = view.loc();
+    const Field& at = view.require("at");
+    m.at = view.number(at);
+    m.node = node_at(view, at, beam);
+    m.mass = view.positive(view.require("mass"));
+    masses.push_back(m);
+  }
+  return masses;
 }
 
 void ModelParser::parse_damping(const MapView& view, Beam& beam) {

@@ -73,12 +73,18 @@ struct Load {
   SourceLoc loc;
 };
 
-enum class SupportType { kPinned, kClamped };
+enum class SupportType { kPinned, kClamped, kSpring };
 
+/// pinned fixes w at the node, clamped w and w'; spring holds w elastically:
+/// a spring (and damper) to the ground on w, with a lumped mass at the node
+/// (the steady arm of a catenary's support).
 struct Support {
   double at = 0.0;  // m along the beam
   SupportType type = SupportType::kPinned;
   int node = -1;    // resolved node index (0 .. elements)
+  double stiffness = 0.0;  // N/m (spring)
+  double damping = 0.0;    // N s/m (spring)
+  double mass = 0.0;       // kg (spring)
   SourceLoc loc;
 };
 
@@ -100,6 +106,14 @@ struct BeamMovingLoad {
   double speed = 0.0;  // m/s, != 0
   double start = 0.0;  // m, position at t = t0
   double t0 = 0.0;     // s
+  SourceLoc loc;
+};
+
+/// A point mass at a node (a clamp, a dropper's half): adds to M on w.
+struct BeamPointMass {
+  double at = 0.0;  // m along the beam
+  double mass = 0.0;  // kg, > 0
+  int node = -1;      // resolved node index
   SourceLoc loc;
 };
 
@@ -130,7 +144,9 @@ struct Beam {
   double second_moment = 0.0;  // m^4 (from `section`)
   double youngs_modulus = 0.0; // Pa
   double density = 0.0;        // kg/m^3
+  double tension = 0.0;   // N, axial pre-tension (>= 0): the geometric stiffness T int(N'^T N') ds
   std::vector<Support> supports;
+  std::vector<BeamPointMass> masses;
   double rayleigh_alpha = 0.0;  // 1/s
   double rayleigh_beta = 0.0;   // s
   std::vector<BeamPointLoad> loads;

@@ -64,6 +64,7 @@ BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity) {
       throw std::invalid_argument(beam_error(beam, "support node " + std::to_string(node) +
                                                        " is outside 0.." + std::to_string(ne)));
     }
+    if (sup.type == ir::SupportType::kSpring) continue;  // elastic: added to K, C, M below
     fixed[nd * node] = 1;
     if (sup.type == ir::SupportType::kClamped) fixed[nd * node + 1] = 1;
   }
@@ -124,9 +125,41 @@ BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity) {
   sys.M.resize(n, n);
   sys.K.setFromTriplets(tk.begin(), tk.end());
   sys.M.setFromTriplets(tm.begin(), tm.end());
+  // Rayleigh damping is the beam's own (its elements, tension included); the
+  // discrete parts below (spring supports, their dampers and masses, point
+  // masses) add to K, C and M as they are.
+  sys.C = beam.rayleigh_alpha * sys.M + beam.rayleigh_beta * sys.K;
+  std::vector<Eigen::Triplet<double>> dk, dc, dm;
+  std::vector<Eigen::Triplet<double>> spring_rows;  // sqrt(k) on w: rows of the stiffness factor
+  for (const ir::Support& sup : beam.supports) {
+    if (sup.type != ir::SupportType::kSpring) continue;
+    const int w = sys.full_to_free[nd * (sup.node >= 0 ? sup.node : node_at(beam, sup.at, "support"))];
+    if (w < 0) continue;
+    if (sup.stiffness != 0.0) dk.emplace_back(w, w, sup.stiffness);
+    if (sup.damping != 0.0) dc.emplace_back(w, w, sup.damping);
+    if (sup.mass != 0.0) dm.emplace_back(w, w, sup.mass);
+    if (sup.stiffness > 0.0) spring_rows.emplace_back(static_cast<int>(spring_rows.size()), w, std::sqrt(sup.stiffness));
+  }
+  for (const ir::BeamPointMass& pm : beam.masses) {
+    const int node = pm.node >= 0 ? pm.node : node_at(beam, pm.at, "point mass");
+    if (node < 0 || node >= nn) {
+      throw std::invalid_argument(beam_error(beam, "point mass node " + std::to_string(node) +
+                                                       " is outside 0.." + std::to_string(ne)));
+    }
+    const int w = sys.full_to_free[nd * node];
+    if (w >= 0) dm.emplace_back(w, w, pm.mass);  // else: the support carries it
+  }
+  auto add = [n](Eigen::SparseMatrix<double>& A, const std::vector<Eigen::Triplet<double>>& t) {
+    if (t.empty()) return;
+    Eigen::SparseMatrix<double> D(n, n);
+    D.setFromTriplets(t.begin(), t.end());
+    A += D;
+  };
+  add(sys.K, dk);
+  add(sys.C, dc);
+  add(sys.M, dm);
   sys.K.makeCompressed();
   sys.M.makeCompressed();
-  sys.C = beam.rayleigh_alpha * sys.M + beam.rayleigh_beta * sys.K;
   sys.C.makeCompressed();
   // The stiffness factor, element rows stacked (free columns only).
   const Eigen::MatrixXd fe = element->stiffness_factor();
@@ -142,7 +175,9 @@ BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity) {
         }
       }
     }
-    sys.stiffness_factor.resize(static_cast<Eigen::Index>(fr) * ne, n);
+    // Spring supports: one row sqrt(k) on their w each, after the elements'.
+    for (const Eigen::Triplet<double>& r : spring_rows) tf.emplace_back(fr * ne + r.row(), r.col(), r.value());
+    sys.stiffness_factor.resize(static_cast<Eigen::Index>(fr) * ne + static_cast<Eigen::Index>(spring_rows.size()), n);
     sys.stiffness_factor.setFromTriplets(tf.begin(), tf.end());
     sys.stiffness_factor.makeCompressed();
   }
