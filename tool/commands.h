@@ -18,5 +18,6 @@ int cmd_modal(const Args& args);
 int cmd_stability(const Args& args);
 int cmd_plot(const Args& args);
 int cmd_sweep(const Args& args);
+int cmd_stats(const Args& args);
 
 }  // namespace mbfe::tool

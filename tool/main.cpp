@@ -25,6 +25,7 @@ Commands:
   stability  largest stable step of each integrator, original and adjusted
   plot       plot a results CSV to a PNG (needs gnuplot)
   sweep      a parameter study: many runs of one model, locally or on Slurm
+  stats      contact-force statistics of a results column (EN 50318: filtered, windowed)
 
 Example:
   mbfe simulate models/double_pendulum.yaml --t-end 2 --out pendulum.csv
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
   const std::map<std::string, int (*)(const Args&)> commands = {
       {"generate", cmd_generate}, {"eval", cmd_eval},           {"simulate", cmd_simulate},
       {"modal", cmd_modal},       {"stability", cmd_stability}, {"plot", cmd_plot},
-      {"sweep", cmd_sweep}};
+      {"sweep", cmd_sweep},       {"stats", cmd_stats}};
   const std::string name = argv[1];
   const auto it = commands.find(name);
   if (it == commands.end()) {
