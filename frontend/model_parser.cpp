@@ -8,7 +8,7 @@ namespace mbfe::frontend {
 
 void ModelParser::parse(const YAML::Node& root) {
   const MapView top(file_, root, "", "", SourceLoc{1, 1});
-  top.allow({"model", "description", "gravity", "bodies", "loads", "beams", "contacts", "initial",
+  top.allow({"model", "description", "gravity", "bodies", "loads", "beams", "contacts", "links", "initial",
              "simulation"});
   const Field& name = top.require("model");
   model_.name = top.identifier(name, limits_.max_name_length);
@@ -21,6 +21,7 @@ void ModelParser::parse(const YAML::Node& root) {
   }
   if (const Field* loads = top.find("loads")) parse_loads(top, *loads);
   if (const Field* contacts = top.find("contacts")) parse_contacts(top, *contacts);
+  if (const Field* links = top.find("links")) parse_links(top, *links);
   model_.initial.q.assign(model_.bodies.size(), 0.0);
   model_.initial.qd.assign(model_.bodies.size(), 0.0);
   if (const Field* initial = top.find("initial")) parse_initial(top.sub(*initial));

@@ -106,6 +106,8 @@ class ModelParser {
   // ---- contacts ----------------------------------------------------------
 
   void parse_contacts(const MapView& top, const Field& field);
+  void parse_links(const MapView& top, const Field& field);
+  BeamPointRef parse_beam_point(const MapView& link_view, const Field& field) const;
 
   void parse_contact_position(const MapView& view, Contact& contact) const;
 

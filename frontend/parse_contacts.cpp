@@ -12,7 +12,7 @@ void ModelParser::parse_contacts(const MapView& top, const Field& field) {
     const MapView view(file_, items[i],
                        item_context(items[i], "contact", i, limits_.max_name_length), "",
                        field.value_loc);
-    view.allow({"name", "type", "body", "point", "beam", "at", "stiffness", "damping", "unilateral"});
+    view.allow({"name", "type", "body", "point", "beam", "at", "stiffness", "damping", "unilateral", "side"});
     Contact contact;
     contact.loc = view.loc();
     const Field& name = view.require("name");
@@ -28,8 +28,9 @@ void ModelParser::parse_contacts(const MapView& top, const Field& field) {
       contact.stiffness = view.positive(view.require("stiffness"));
       contact.damping = at_least_or(view, "damping", 0.0);
       if (const Field* u = view.find("unilateral")) contact.unilateral = view.boolean(*u);
+      if (const Field* side = view.find("side")) contact.from_below = view.choice(*side, {"above", "below"}) == 1;
     } else {
-      for (const char* key : {"stiffness", "damping", "unilateral"}) {
+      for (const char* key : {"stiffness", "damping", "unilateral", "side"}) {
         if (const Field* f = view.find(key)) {
           view.fail(f->key_loc, view.prefixed(std::string("'") + key +
                                               "' is only for a slider_spring contact"));
@@ -67,6 +68,70 @@ void ModelParser::parse_contact_position(const MapView& view, Contact& contact) 
                             "], the length of beam " + quoted(model_.beams[contact.beam].name) +
                             " (got " + shown(at_field.value.Scalar()) + ")"));
   }
+}
+
+void ModelParser::parse_links(const MapView& top, const Field& field) {
+  const auto items = top.list(field);
+  std::unordered_map<std::string, SourceLoc> names;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const MapView view(file_, items[i], item_context(items[i], "link", i, limits_.max_name_length), "",
+                       field.value_loc);
+    view.allow({"name", "a", "b", "stiffness", "damping", "slack", "rest", "hold"});
+    Link link;
+    link.loc = view.loc();
+    const Field& name = view.require("name");
+    link.name = view.identifier(name, limits_.max_name_length);
+    const auto [it, inserted] = names.emplace(link.name, name.value_loc);
+    if (!inserted) {
+      view.fail(name.value_loc, view.prefixed("duplicate link name (first used at line " +
+                                              std::to_string(it->second.line) + ")"));
+    }
+    link.a = parse_beam_point(view, view.require("a"));
+    const Field& b = view.require("b");
+    link.b = parse_beam_point(view, b);
+    const Beam& beam_a = model_.beams[link.a.beam];
+    const Beam& beam_b = model_.beams[link.b.beam];
+    if (link.a.beam == link.b.beam) {
+      view.fail(b.value_loc, view.prefixed("a link joins two different beams (both ends are on " +
+                                           quoted(beam_a.name) + ")"));
+    }
+    // Transverse displacements add up only between parallel beams.
+    if (std::abs(std::remainder(beam_a.angle - beam_b.angle, 2.0 * M_PI)) > 1e-9) {
+      view.fail(b.value_loc, view.prefixed("beams " + quoted(beam_a.name) + " and " + quoted(beam_b.name) +
+                                           " are not parallel (angles " + format_number(beam_a.angle) + " and " +
+                                           format_number(beam_b.angle) +
+                                           " rad): a link acts on their transverse displacements"));
+    }
+    link.stiffness = view.positive(view.require("stiffness"));
+    link.damping = at_least_or(view, "damping", 0.0);
+    if (const Field* slack = view.find("slack")) link.slack = view.boolean(*slack);
+    const Field* rest = view.find("rest");
+    const Field* hold = view.find("hold");
+    if (rest && hold) {
+      view.fail(hold->key_loc, view.prefixed("give 'rest' or 'hold', not both ('hold' finds the rest offset)"));
+    }
+    if (rest) link.rest = view.number(*rest);
+    if (hold) link.hold = view.number(*hold);
+    model_.links.push_back(link);
+  }
+}
+
+BeamPointRef ModelParser::parse_beam_point(const MapView& link_view, const Field& field) const {
+  const MapView view = link_view.sub(field);
+  view.allow({"beam", "at"});
+  BeamPointRef ref;
+  const Field& beam = view.require("beam");
+  const std::string beam_name = view.identifier(beam, limits_.max_name_length);
+  ref.beam = beam_index(beam_name);
+  if (ref.beam < 0) view.fail(beam.value_loc, view.prefixed("unknown beam " + quoted(beam_name)));
+  const Field& at = view.require("at");
+  ref.at = view.number(at);
+  const double length = model_.beams[ref.beam].length;
+  if (ref.at < 0.0 || ref.at > length) {
+    view.fail(at.value_loc, view.prefixed("at must be within [0, " + format_number(length) + "], the length of beam " +
+                                          quoted(beam_name) + " (got " + shown(at.value.Scalar()) + ")"));
+  }
+  return ref;
 }
 
 }  // namespace mbfe::frontend

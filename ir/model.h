@@ -171,8 +171,33 @@ struct Contact {
   double stiffness = 0.0;  // N/m (slider_spring)
   double damping = 0.0;    // N s/m (slider_spring)
   bool unilateral = false; // slider_spring: compression only (lift-off)
+  bool from_below = false; // slider_spring: the point presses from the +w side (a pantograph under a wire)
   SourceLoc loc;
   bool is_constraint() const { return type != ContactType::kSliderSpring; }
+};
+
+/// A point on a beam, for a link's ends.
+struct BeamPointRef {
+  int beam = -1;    // index into Model::beams
+  double at = 0.0;  // m along the beam (any s in [0, L]: the shape functions interpolate)
+};
+
+/// An axial spring (and damper) between two points of two parallel beams, on
+/// their transverse displacements: a catenary's dropper. Its tension is
+///   T = stiffness (w_b - w_a - rest) + damping (w_b - w_a)',
+/// pulling a towards b and b towards a; `slack`: it carries tension only
+/// (T = 0 when that is negative). `hold`, when given, fixes `rest` instead:
+/// the rest offset that puts point a at w = hold in the static equilibrium of
+/// the beams and their links (form finding, docs/catenary.md).
+struct Link {
+  std::string name;
+  BeamPointRef a, b;
+  double stiffness = 0.0;  // N/m, > 0
+  double damping = 0.0;    // N s/m, >= 0
+  bool slack = false;
+  double rest = 0.0;       // m
+  std::optional<double> hold;  // m
+  SourceLoc loc;
 };
 
 struct Initial {
@@ -198,6 +223,7 @@ struct Model {
   std::vector<Load> loads;
   std::vector<Beam> beams;
   std::vector<Contact> contacts;
+  std::vector<Link> links;
   Initial initial;
   Simulation simulation;
 };

@@ -182,6 +182,10 @@ void write_sidecar(const std::string& csv_path, const Model& model, const runtim
   for (const runtime::SpringContactTally& c : report.springs)
     springs.push_back({{"name", c.name}, {"lift_offs", c.lift_offs}, {"time_off", c.time_off}});
   if (!springs.empty()) j["springs"] = springs;
+  nlohmann::json links = nlohmann::json::array();
+  for (const runtime::LinkSlackTally& l : report.links)
+    links.push_back({{"name", l.name}, {"slackenings", l.slackenings}, {"time_slack", l.time_slack}});
+  if (!links.empty()) j["links"] = links;
   std::ofstream out(csv_path + ".json");
   out << j.dump(2) << "\n";
 }
@@ -191,6 +195,9 @@ void print_spring_tally(const runtime::SimulationReport& report) {
   for (const runtime::SpringContactTally& c : report.springs)
     std::cerr << "mbfe: contact '" << c.name << "': " << c.lift_offs << " lift-off" << (c.lift_offs == 1 ? "" : "s")
               << ", " << c.time_off << " s off contact while over the beam\n";
+  for (const runtime::LinkSlackTally& l : report.links)
+    std::cerr << "mbfe: link '" << l.name << "': slack " << l.slackenings << " time" << (l.slackenings == 1 ? "" : "s")
+              << ", " << l.time_slack << " s in all\n";
 }
 
 }  // namespace

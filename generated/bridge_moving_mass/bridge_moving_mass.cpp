@@ -212,7 +212,7 @@ namespace {
 const char* const kCoordinateNames[] = {"carriage", "wheel"};
 
 const mbfe_contact_kernels_v1 kContacts[] = {
-    {"tyre", 2, 0, 0.0, 1, contact_0_position_value, contact_0_phi, contact_0_jacobians, contact_0_gamma, 5000000.0, 1000.0, 1},
+    {"tyre", 2, 0, 0.0, 1, contact_0_position_value, contact_0_phi, contact_0_jacobians, contact_0_gamma, 5000000.0, 1000.0, 1, 0},
 };
 
 const int kDrivenCoordinates[] = {0};

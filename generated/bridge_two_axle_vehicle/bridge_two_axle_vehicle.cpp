@@ -1415,12 +1415,12 @@ namespace {
 const char* const kCoordinateNames[] = {"carriage", "bounce", "pitch", "front_wheel", "rear_wheel"};
 
 const mbfe_contact_kernels_v1 kContacts[] = {
-    {"front_approach", 2, 0, 0.0, 1, contact_0_position_value, contact_0_phi, contact_0_jacobians, contact_0_gamma, 2000000.0, 2000.0, 1},
-    {"front_deck", 2, 1, 0.0, 1, contact_1_position_value, contact_1_phi, contact_1_jacobians, contact_1_gamma, 2000000.0, 2000.0, 1},
-    {"front_exit", 2, 2, 0.0, 1, contact_2_position_value, contact_2_phi, contact_2_jacobians, contact_2_gamma, 2000000.0, 2000.0, 1},
-    {"rear_approach", 2, 0, 0.0, 1, contact_3_position_value, contact_3_phi, contact_3_jacobians, contact_3_gamma, 2000000.0, 2000.0, 1},
-    {"rear_deck", 2, 1, 0.0, 1, contact_4_position_value, contact_4_phi, contact_4_jacobians, contact_4_gamma, 2000000.0, 2000.0, 1},
-    {"rear_exit", 2, 2, 0.0, 1, contact_5_position_value, contact_5_phi, contact_5_jacobians, contact_5_gamma, 2000000.0, 2000.0, 1},
+    {"front_approach", 2, 0, 0.0, 1, contact_0_position_value, contact_0_phi, contact_0_jacobians, contact_0_gamma, 2000000.0, 2000.0, 1, 0},
+    {"front_deck", 2, 1, 0.0, 1, contact_1_position_value, contact_1_phi, contact_1_jacobians, contact_1_gamma, 2000000.0, 2000.0, 1, 0},
+    {"front_exit", 2, 2, 0.0, 1, contact_2_position_value, contact_2_phi, contact_2_jacobians, contact_2_gamma, 2000000.0, 2000.0, 1, 0},
+    {"rear_approach", 2, 0, 0.0, 1, contact_3_position_value, contact_3_phi, contact_3_jacobians, contact_3_gamma, 2000000.0, 2000.0, 1, 0},
+    {"rear_deck", 2, 1, 0.0, 1, contact_4_position_value, contact_4_phi, contact_4_jacobians, contact_4_gamma, 2000000.0, 2000.0, 1, 0},
+    {"rear_exit", 2, 2, 0.0, 1, contact_5_position_value, contact_5_phi, contact_5_jacobians, contact_5_gamma, 2000000.0, 2000.0, 1, 0},
 };
 
 const int kDrivenCoordinates[] = {0};

@@ -417,7 +417,7 @@ namespace {
 const char* const kCoordinateNames[] = {"link1", "link2"};
 
 const mbfe_contact_kernels_v1 kContacts[] = {
-    {"tip_slider", 1, 0, 0.0, 1, contact_0_position_value, contact_0_phi, contact_0_jacobians, contact_0_gamma, 0.0, 0.0, 0},
+    {"tip_slider", 1, 0, 0.0, 1, contact_0_position_value, contact_0_phi, contact_0_jacobians, contact_0_gamma, 0.0, 0.0, 0, 0},
 };
 
 const mbfe_model_v1 kModel = {

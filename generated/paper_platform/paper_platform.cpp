@@ -591,8 +591,8 @@ namespace {
 const char* const kCoordinateNames[] = {"carrier_x", "carrier_y", "platform", "arm"};
 
 const mbfe_contact_kernels_v1 kContacts[] = {
-    {"arm_pin", 0, 0, 0.35, 2, contact_0_position_value, contact_0_phi, contact_0_jacobians, contact_0_gamma, 0.0, 0.0, 0},
-    {"cp2_slider", 1, 1, 0.0, 1, contact_1_position_value, contact_1_phi, contact_1_jacobians, contact_1_gamma, 0.0, 0.0, 0},
+    {"arm_pin", 0, 0, 0.35, 2, contact_0_position_value, contact_0_phi, contact_0_jacobians, contact_0_gamma, 0.0, 0.0, 0, 0},
+    {"cp2_slider", 1, 1, 0.0, 1, contact_1_position_value, contact_1_phi, contact_1_jacobians, contact_1_gamma, 0.0, 0.0, 0, 0},
 };
 
 const mbfe_model_v1 kModel = {

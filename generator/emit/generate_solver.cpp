@@ -134,7 +134,8 @@ GeneratedSolver generate_solver_unchecked(const ir::Model& model) {
     }
     const ir::Contact& ic = model.contacts[parts.contact_entries.size()];
     parts.contact_entries.push_back({c.name, c.type, c.beam, c.rows, c.at, c.position.name + "_value", c.phi.name,
-                                     c.jacobians.name, c.gamma.name, ic.stiffness, ic.damping, ic.unilateral});
+                                     c.jacobians.name, c.gamma.name, ic.stiffness, ic.damping, ic.unilateral,
+                                     ic.from_below});
     // The ABI wants the position as a return value.
     contact_text << "\nstatic double " << c.position.name << "_value(const double* q) {\n  double s = 0.0;\n  "
                  << c.position.name << "(q, &s);\n  return s;\n}\n";

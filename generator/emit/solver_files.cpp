@@ -81,7 +81,8 @@ std::string solver_source(const ir::Model& model, const GeneratedSolver& solver,
     for (const SolverParts::ContactEntry& c : contacts)
       source << "    {\"" << c.name << "\", " << c.type << ", " << c.beam << ", " << print_double(c.at) << ", "
              << c.rows << ", " << c.position << ", " << c.phi << ", " << c.jacobians << ", " << c.gamma << ", "
-             << print_double(c.stiffness) << ", " << print_double(c.damping) << ", " << (c.unilateral ? 1 : 0)
+             << print_double(c.stiffness) << ", " << print_double(c.damping) << ", " << (c.unilateral ? 1 : 0) << ", "
+             << (c.from_below ? 1 : 0)
              << "},\n";
     source << "};\n\n";
   }

@@ -31,6 +31,7 @@ struct SolverParts {
     std::string position, phi, jacobians, gamma;  // function names
     double stiffness = 0.0, damping = 0.0;  // slider_spring
     bool unilateral = false;
+    bool from_below = false;
   };
   std::vector<ContactEntry> contact_entries;
   std::string motion;               // the motion kernel; empty when no joint is driven

@@ -44,6 +44,10 @@ typedef struct mbfe_contact_kernels_v1 {
   double stiffness;
   double damping;
   int unilateral;
+  /* slider_spring only: 0 the point presses the beam from the side w points
+   * away from (a wheel on a deck: delta = w(s) - y_P); 1 from the side w points
+   * to (a pantograph under a contact wire: delta = y_P - w(s)). */
+  int from_below;
 } mbfe_contact_kernels_v1;
 
 typedef struct mbfe_model_v1 {

@@ -44,11 +44,18 @@ void ContactSprings::apply(const double* qb, const double* qc, const double* qbd
       qed[j] = f >= 0 ? qcd[cols[j]] : 0.0;
     }
     kern.phi(qb, qe, s0, beam.element_length, &st.delta);
+    // Pressed from the +w side: the penetration and its gradient change sign.
+    const double side = kern.from_below ? -1.0 : 1.0;
+    st.delta *= side;
     st.w = hermite::N((st.s - s0) / beam.element_length, beam.element_length) *
            Eigen::Map<const Eigen::Vector4d>(qe);
     double* je = g.je;
     std::vector<double>& jb = g.jb;
     kern.jacobians(qb, qe, s0, beam.element_length, jb.data(), je);
+    if (side < 0.0) {
+      for (int j = 0; j < nb; ++j) jb[j] = -jb[j];
+      for (int j = 0; j < 4; ++j) je[j] = -je[j];
+    }
     for (int j = 0; j < nb; ++j) st.rate += jb[j] * qbd[j];
     for (int j = 0; j < 4; ++j)
       if (cols[j] >= 0) st.rate += je[j] * qed[j];

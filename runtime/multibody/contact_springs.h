@@ -11,6 +11,9 @@
 //
 //   Q_b += -(d delta / d q_b)^T N,   P_c += -(d delta / d q_c)^T N.
 //
+// A contact pressed from the +w side (`side: below`, a pantograph under a
+// contact wire) uses delta = y_P - w(s) and the opposite gradient.
+//
 // Unilateral: N = 0 when delta <= 0 (apart) or k delta + c delta' < 0 (the
 // damper would pull): the contact never pulls. Off the beam (s outside
 // [0, L]) the contact is inactive: vehicles drive on and off.

@@ -26,12 +26,13 @@ std::vector<BeamMesh> meshes_of(const std::vector<CoupledBeam>& beams) {
 }  // namespace
 
 CoupledDynamics::CoupledDynamics(const mbfe_model_v1& model, std::vector<CoupledBeam> beams,
-                                 std::vector<BodyInertia> bodies)
+                                 std::vector<BodyInertia> bodies, const std::vector<ir::Link>& links)
     : model_(model),
       beams_(std::move(beams)),
       bodies_(std::move(bodies)),
       cc_(model, meshes_of(beams_)),
       springs_(model, cc_),
+      links_(links, cc_),
       nb_(model.num_coordinates),
       nc_(cc_.num_beam_dofs()) {
   if (model.abi_version != MBFE_MODEL_ABI_VERSION) {
@@ -106,6 +107,10 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
   bool extra = false;
   if (springs_.count() > 0) {
     springs_.apply(qb, q.data() + nb_, qbd, qd.data() + nb_, qb_force_, fc_extra_);
+    extra = true;
+  }
+  if (links_.count() > 0) {
+    links_.apply(q.data() + nb_, qd.data() + nb_, fc_extra_);
     extra = true;
   }
   rb_ = qb_force_ - fb_;

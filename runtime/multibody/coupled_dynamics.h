@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "runtime/abi/mbfe_model_abi.h"
+#include "runtime/multibody/beam_links.h"
 #include "runtime/multibody/contact_constraints.h"
 #include "runtime/multibody/contact_springs.h"
 #include "runtime/multibody/coupled_beam.h"
@@ -44,7 +45,7 @@ class CoupledDynamics {
   /// @throws std::invalid_argument for inconsistent beams / contacts,
   ///         std::runtime_error if a beam mass matrix is not positive definite.
   CoupledDynamics(const mbfe_model_v1& model, std::vector<CoupledBeam> beams,
-                  std::vector<BodyInertia> bodies = {});
+                  std::vector<BodyInertia> bodies = {}, const std::vector<ir::Link>& links = {});
 
   int nb() const { return nb_; }
   int nc() const { return nc_; }
@@ -76,6 +77,9 @@ class CoupledDynamics {
 
   /// The slider_spring contacts; states() are those of the last evaluate().
   const ContactSprings& springs() const { return springs_; }
+  /// The links between beams (droppers); states() are those of the last evaluate().
+  const BeamLinks& links() const { return links_; }
+  BeamLinks& links() { return links_; }
 
   /// Driven joints (`motion:`): their rigid coordinates, model order. In
   /// evaluate() their q and q' are those of the motion at t, whatever the
@@ -93,6 +97,7 @@ class CoupledDynamics {
   std::vector<BodyInertia> bodies_;
   ContactConstraints cc_;
   ContactSprings springs_;
+  BeamLinks links_;
   int nb_, nc_;
   std::vector<int> driven_;
   // Driven joints at the last evaluate(): the motion, and the rows of M and of

@@ -18,7 +18,7 @@ constexpr double kDifferenceStep = 6e-6;
 }  // namespace
 
 CoupledImplicitSystem::CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dyn)
-    : AugmentedSystem(std::move(dyn)), springs_(dyn_->model(), dyn_->constraints()) {
+    : AugmentedSystem(std::move(dyn)), springs_(dyn_->model(), dyn_->constraints()), links_(dyn_->links()) {
   for (const CoupledBeam& b : dyn_->beams()) {
     if (b.mesh.num_free > 0 && (b.C.rows() != b.mesh.num_free || b.K.rows() != b.mesh.num_free)) {
       throw std::invalid_argument("beam '" + b.mesh.name +
@@ -65,6 +65,7 @@ void CoupledImplicitSystem::residual(double t, const Eigen::VectorXd& q, const E
   fc_.setZero();
   if (springs_.count() > 0)
     springs_.apply(qm_.data(), qm_.data() + nb, vm_.data(), vm_.data() + nb, qb_force_, fc_);
+  if (links_.count() > 0) links_.apply(q.data() + nb, v.data() + nb, fc_);
   rb.noalias() = mb_row_ * a.head(nb);
   rb += fb_ - qb_force_;
   // Beams: M_c a + C v + K q - P - (time loads, springs).
@@ -196,6 +197,17 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
         if (g.cols[j] >= 0 && g.je[j] != 0.0) entries.emplace_back(nb + g.cols[j], g.je[j]);
       for (const auto& [i, gi] : entries)
         for (const auto& [j, gj] : entries) add(i, j, w * gi * gj);
+    }
+  }
+  if (links_.count() > 0) {
+    // Taut links: k g g^T and c g g^T on the beam DOFs they join.
+    links_.apply(q.data() + nb, v.data() + nb, fc_);
+    for (int k = 0; k < links_.count(); ++k) {
+      if (links_.states()[k].slack) continue;
+      const BeamLinks::Gradient& g = links_.gradient(k);
+      const double w = c_q * links_.stiffness(k) + c_v * links_.damping(k);
+      for (int i = 0; i < g.size; ++i)
+        for (int j = 0; j < g.size; ++j) add(nb + g.cols[i], nb + g.cols[j], w * g.values[i] * g.values[j]);
     }
   }
   if (m > 0) {

@@ -9,8 +9,8 @@
 // state and report it keeps). The Newton matrix keeps the structure
 // (docs/implicit-integration.md): the beams' constant sparse M, C and K as
 // they are, the rigid block dense from the closed-form Jacobian kernel of the
-// generated solver, each slider_spring as the rank-one term k g g^T
-// (c g g^T for its damper), and the contact rows G = [J_b J_c] bordering it;
+// generated solver, each slider_spring and each taut link as the rank-one
+// term k g g^T (c g g^T for its damper), and the contact rows G = [J_b J_c] bordering it;
 // the whole is one sparse LU.
 #pragma once
 
@@ -58,6 +58,7 @@ class CoupledImplicitSystem final : public AugmentedSystem, public SecondOrderSy
   void rigid_residual(double t, const double* qb, const double* vb, const double* ab, Eigen::VectorXd& tau);
 
   ContactSprings springs_;
+  BeamLinks links_;  // a copy: its states are this system's scratch
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
   std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SparseMatrix<double> matrix_;

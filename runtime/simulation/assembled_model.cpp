@@ -33,6 +33,12 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   } catch (const std::invalid_argument& e) {
     throw InvalidInput(model_.source_path + ": " + e.what());
   }
+  if (!model_.links.empty()) {
+    if (kind_ != ModelKind::kCoupled)
+      throw InvalidInput(model_.source_path + ": links join beams in coupled models (with bodies); model '" +
+                         model_.name + "' has no bodies");
+    links_ = find_link_rest_offsets(model_, beams_);
+  }
   if (kind_ == ModelKind::kCoupled) {
     original_beams_ = coupled_beams(beams_, false);
     if (beams_.any_adjustment) adjusted_beams_ = coupled_beams(beams_, true);
@@ -51,7 +57,10 @@ std::shared_ptr<CoupledDynamics> AssembledModel::make_dynamics(bool adjusted) co
   if (kind_ != ModelKind::kCoupled)
     throw InvalidInput("model '" + model_.name + "' is not a coupled model (bodies and beams)");
   resolve_adjusted(adjusted);  // no adjusted beams without an adjustment block
-  return std::make_shared<CoupledDynamics>(*kernels_, adjusted ? adjusted_beams_ : original_beams_, bodies_);
+  auto dynamics =
+      std::make_shared<CoupledDynamics>(*kernels_, adjusted ? adjusted_beams_ : original_beams_, bodies_, model_.links);
+  for (std::size_t k = 0; k < links_.rest.size(); ++k) dynamics->links().set_rest(static_cast<int>(k), links_.rest[k]);
+  return dynamics;
 }
 
 void AssembledModel::initial_coordinates(Eigen::VectorXd& q, Eigen::VectorXd& qd) const {

@@ -16,6 +16,7 @@
 #include "runtime/damping/beam_model.h"
 #include "runtime/multibody/coupled_dynamics.h"
 #include "runtime/multibody/rigid_system.h"
+#include "runtime/simulation/link_form_finding.h"
 
 namespace mbfe::runtime {
 
@@ -61,6 +62,10 @@ class AssembledModel {
   /// and undeformed (zero). q and qd are resized (nb + nc entries).
   void initial_coordinates(Eigen::VectorXd& q, Eigen::VectorXd& qd) const;
 
+  /// The links' rest offsets (their `rest`, or found for `hold`) and the
+  /// static equilibrium of the beams and links alone (docs/catenary.md).
+  const LinkFormFinding& links() const { return links_; }
+
  private:
   ir::Model model_;
   const mbfe_model_v1* kernels_ = nullptr;
@@ -70,6 +75,7 @@ class AssembledModel {
   // The beams as the coupled dynamics sees them (their callbacks own their
   // scratch; each make_dynamics() copies them).
   std::vector<CoupledBeam> original_beams_, adjusted_beams_;
+  LinkFormFinding links_;
 };
 
 }  // namespace mbfe::runtime

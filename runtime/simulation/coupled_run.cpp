@@ -167,6 +167,11 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
     layout.columns.push_back("deflection_" + springs.name(k));
     layout.units.push_back("m");
   }
+  const BeamLinks& links = dynamics->links();
+  for (int k = 0; k < links.count(); ++k) {
+    layout.columns.push_back("tension_" + links.name(k));
+    layout.units.push_back("N");
+  }
   const std::vector<int>& driven = dynamics->driven();
   for (int d : driven) {
     layout.columns.push_back(model.ir().bodies[d].name + "_drive");
@@ -180,11 +185,22 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   // Lift-offs and time off contact, on every accepted step.
   std::vector<SpringContactTally> tally(springs.count());
   for (int k = 0; k < springs.count(); ++k) tally[k].name = springs.name(k);
+  std::vector<LinkSlackTally> link_tally;
+  for (int k = 0; k < links.count(); ++k)
+    if (links.can_go_slack(k)) link_tally.push_back({links.name(k), 0, 0.0, false});
   double t_prev = 0.0;
-  if (springs.count() > 0) {
+  if (springs.count() > 0 || !link_tally.empty()) {
     options.on_step = [&](double t, const Eigen::VectorXd& y) {
       system->full_state(t, y, q, qd);
-      system->report(t, y);  // evaluates the springs at this state
+      system->report(t, y);  // evaluates the springs and links at this state
+      for (int k = 0, i = 0; k < links.count(); ++k) {
+        if (!links.can_go_slack(k)) continue;
+        LinkSlackTally& c = link_tally[static_cast<std::size_t>(i++)];
+        const bool slack = links.states()[k].slack;
+        if (slack) c.time_slack += t - t_prev;
+        if (slack && !c.slack) ++c.slackenings;
+        c.slack = slack;
+      }
       for (int k = 0; k < springs.count(); ++k) {
         const SpringContactState& st = springs.states()[k];
         SpringContactTally& c = tally[k];
@@ -230,6 +246,7 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
       values[k++] = contacts.phi_max;
       for (const SpringContactState& st : springs.states()) values[k++] = st.force;
       for (const SpringContactState& st : springs.states()) values[k++] = st.w;
+      for (const LinkState& st : links.states()) values[k++] = st.tension;
       if (!driven.empty()) {
         dynamics->drive_reactions(contacts.qdd, reactions);
         for (Eigen::Index i = 0; i < reactions.size(); ++i) values[k++] = reactions[i];
@@ -240,6 +257,7 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
     throw InvalidInput(e.what());
   }
   report.springs = tally;
+  report.links = link_tally;
   if (report.run.status == SimulationStatus::kCompleted && row_fault.empty()) return report;
   // The stable limit of the linearised system at the initial state tells an
   // instability of the integrator from a fault of the model.

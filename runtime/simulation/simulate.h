@@ -111,6 +111,8 @@ struct SimulationReport {
   std::string message;
   /// Coupled models: lift-offs and time off contact of each slider_spring contact.
   std::vector<SpringContactTally> springs;
+  /// Coupled models: slackenings and time slack of each link that can go slack.
+  std::vector<LinkSlackTally> links;
 };
 
 /// Runs the request. Numerical faults (divergence, a singular mass matrix, a
