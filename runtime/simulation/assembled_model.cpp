@@ -28,10 +28,26 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
     kernels_ = kernels;
     bodies_ = body_inertias(model_);
   }
+  // A coupled model integrates its beams in nodal coordinates (sparse M, C,
+  // K): a beam beyond the dense modal path needs only its lowest modes (for
+  // the report); whether its adjustment can be built from them is checked below.
+  BeamAnalysisOptions options = beams;
+  if (kind_ == ModelKind::kCoupled && options.sparse_modes == 0) options.sparse_modes = kLargeBeamModes;
   try {
-    beams_ = analyse_beams(model_, beams);
+    beams_ = analyse_beams(model_, options);
   } catch (const std::invalid_argument& e) {
     throw InvalidInput(model_.source_path + ": " + e.what());
+  }
+  for (const BeamPart& part : beams_.beams) {
+    // The low-rank adjusted operators keep the computed modes and cap the
+    // rest uniformly: right only if every mode left out is one the cap changes.
+    if (part.has_adjustment && !part.basis.complete &&
+        !(part.adjusted.adjusted > 0 && part.adjusted.change.back() == ModeChange::kAdjusted && part.adjusted.uniform))
+      adjustment_unavailable_ = "beam '" + part.system.name + "' has " + std::to_string(part.system.M.rows()) +
+                                " DOFs, beyond the dense modal analysis (" + std::to_string(options.dense_limit) +
+                                "), and its " + std::to_string(part.basis.omega.size()) +
+                                " lowest modes do not reach its adjustment's limit: the adjusted operators need every mode "
+                                "the cap keeps; run the original model (--adjust off), e.g. with generalized_alpha";
   }
   if (!model_.links.empty()) {
     if (kind_ != ModelKind::kCoupled)
@@ -41,12 +57,13 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   }
   if (kind_ == ModelKind::kCoupled) {
     original_beams_ = coupled_beams(beams_, false);
-    if (beams_.any_adjustment) adjusted_beams_ = coupled_beams(beams_, true);
+    if (beams_.any_adjustment && adjustment_unavailable_.empty()) adjusted_beams_ = coupled_beams(beams_, true);
   }
 }
 
 bool AssembledModel::resolve_adjusted(std::optional<bool> asked) const {
   const bool adjusted = asked.value_or(beams_.any_adjustment);
+  if (adjusted && !adjustment_unavailable_.empty()) throw InvalidInput(model_.source_path + ": " + adjustment_unavailable_);
   if (adjusted && !beams_.any_adjustment)
     throw InvalidInput("--adjust on: no beam of '" + model_.name +
                        "' has an `adjustment:` block (e.g. adjustment: {omega_limit: 1.0e5, margin: 0.1})");

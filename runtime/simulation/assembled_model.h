@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "ir/model.h"
@@ -76,6 +77,11 @@ class AssembledModel {
   // scratch; each make_dynamics() copies them).
   std::vector<CoupledBeam> original_beams_, adjusted_beams_;
   LinkFormFinding links_;
+  // Why the adjusted beams cannot be built (a large beam whose lowest modes
+  // do not reach its cap); empty when they can.
+  std::string adjustment_unavailable_;
+  // Modes computed of a coupled model's beam beyond the dense modal path.
+  static constexpr int kLargeBeamModes = 40;
 };
 
 }  // namespace mbfe::runtime

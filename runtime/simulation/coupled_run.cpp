@@ -22,6 +22,10 @@ namespace mbfe::runtime::detail {
 
 namespace {
 
+// Coupled models up to this many coordinates find their static start with
+// the dense difference Jacobian (tested longest); larger ones with the sparse tangent.
+constexpr int kDenseStaticLimit = 600;
+
 // A projected coordinate that moved less than this (relative) moved by round-off.
 constexpr double kProjectionNoise = 1e-12;
 
@@ -95,7 +99,12 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   Eigen::VectorXd q0, qd0, y0;
   model.initial_coordinates(q0, qd0);
   dynamics->impose_motion(0.0, q0, qd0);
-  if (request.static_start.value_or(model.ir().initial.static_start)) coupled_static_state(model.ir(), *dynamics, q0, qd0);
+  if (request.static_start.value_or(model.ir().initial.static_start)) {
+    // The dense difference Jacobian costs n evaluations and an n^3 solve:
+    // large models take the sparse tangent.
+    if (n <= kDenseStaticLimit || !coupled_static_state_sparse(model.ir(), dynamics, q0, qd0))
+      coupled_static_state(model.ir(), *dynamics, q0, qd0);
+  }
   try {
     if (index3) {
       // Projected onto the contacts as the partitioned formulation does, then

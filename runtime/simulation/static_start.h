@@ -13,6 +13,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <functional>
 #include <string>
 #include <vector>
@@ -43,6 +44,15 @@ StaticSolution solve_static(const StaticResidualFn& residual, const Eigen::Vecto
 /// becomes the equilibrium at t = 0, qd zero but for the driven joints'
 /// motion. @throws ir::ModelError at `model.initial.loc` when there is none.
 void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::VectorXd& q, Eigen::VectorXd& qd);
+
+/// The same for a large coupled model (thousands of beam DOFs, where the dense
+/// difference Jacobian above is out of reach): Newton with the sparse
+/// tangent of the implicit integrators (coupled_implicit_system.h), K_t
+/// bordered by the contact rows. Needs the beams' sparse C and K (the original
+/// model); returns false (q untouched) when they are not there.
+/// @throws ir::ModelError at `model.initial.loc` when Newton does not converge.
+bool coupled_static_state_sparse(const ir::Model& model, const std::shared_ptr<CoupledDynamics>& dyn,
+                                 Eigen::VectorXd& q, Eigen::VectorXd& qd);
 
 /// A rigid model's static start on y = [q; q'] (q the starting guess).
 /// @throws ir::ModelError at `model.initial.loc` when there is none.
