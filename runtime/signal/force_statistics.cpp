@@ -23,9 +23,14 @@ ForceStatistics force_statistics(const std::vector<double>& t, const std::vector
   if (t.size() != force.size() || t.size() < 2)
     throw std::invalid_argument("need at least two samples of time and force");
   std::vector<double> filtered = force;
+  std::size_t n = t.size();
   if (options.lowpass_hz > 0.0) {
     const double dt = t[1] - t[0];
-    for (std::size_t i = 1; i < t.size(); ++i) {
+    // A run writes its last state whatever --every says: a final row closer
+    // than the others is left out rather than refused.
+    if (n > 2 && !(std::abs((t[n - 1] - t[n - 2]) - dt) <= kEvenSpacing * dt) && t[n - 1] - t[n - 2] < dt) --n;
+    filtered.resize(n);
+    for (std::size_t i = 1; i < n; ++i) {
       if (!(std::abs((t[i] - t[i - 1]) - dt) <= kEvenSpacing * dt)) {
         std::ostringstream os;
         os << "the samples are not evenly spaced (t = " << t[i - 1] << " to " << t[i] << " s against " << dt
@@ -33,14 +38,15 @@ ForceStatistics force_statistics(const std::vector<double>& t, const std::vector
         throw std::invalid_argument(os.str());
       }
     }
-    filtered = filtfilt(butterworth_lowpass(options.order, options.lowpass_hz, 1.0 / dt), force);
+    filtered = filtfilt(butterworth_lowpass(options.order, options.lowpass_hz, 1.0 / dt),
+                        std::vector<double>(force.begin(), force.begin() + static_cast<std::ptrdiff_t>(n)));
   }
   ForceStatistics s;
   double sum = 0.0, sum2 = 0.0;
   int lost = 0;
   s.max = -INFINITY;
   s.min = INFINITY;
-  for (std::size_t i = 0; i < t.size(); ++i) {
+  for (std::size_t i = 0; i < n; ++i) {
     if (t[i] < options.from || t[i] > options.to) continue;
     ++s.samples;
     sum += filtered[i];
@@ -50,7 +56,7 @@ ForceStatistics force_statistics(const std::vector<double>& t, const std::vector
   }
   if (s.samples == 0) throw std::invalid_argument("no sample lies in the window");
   s.mean = sum / s.samples;
-  for (std::size_t i = 0; i < t.size(); ++i) {
+  for (std::size_t i = 0; i < n; ++i) {
     if (t[i] < options.from || t[i] > options.to) continue;
     sum2 += (filtered[i] - s.mean) * (filtered[i] - s.mean);
   }

@@ -28,7 +28,9 @@ struct ForceStatisticsOptions {
 
 /// Statistics of `force` sampled at times `t` (evenly spaced when filtering).
 /// The filter runs over the whole signal, then the window is cut, so that its
-/// edges see no start-up transient. @throws std::invalid_argument for uneven
+/// edges see no start-up transient. A last sample closer to the one before
+/// than the others (a run's final state) is left out when filtering.
+/// @throws std::invalid_argument for uneven
 /// samples (when filtering), an empty window, or what the filter refuses.
 ForceStatistics force_statistics(const std::vector<double>& t, const std::vector<double>& force,
                                  const ForceStatisticsOptions& options);

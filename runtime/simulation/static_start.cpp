@@ -204,6 +204,7 @@ bool coupled_static_state_sparse(const ir::Model& model, const std::shared_ptr<C
     const Eigen::VectorXd dq = kStiffnessWeight * da;
     q -= dq;
     lambda -= dl;
+    dyn->impose_motion(0.0, q, qd);  // the solve's round-off, times the large weight, must not move them
     if (!q.allFinite()) break;
     if (dq.cwiseAbs().maxCoeff() <= kStepTolerance * (1.0 + q.cwiseAbs().maxCoeff())) return true;
   }

@@ -104,7 +104,7 @@ TEST(CmdStats, BadInputIsLocated) {
   const std::string uneven = tmp("stats_uneven.csv");
   std::ofstream u(uneven);
   u << "t,force\n";
-  for (int i = 0; i < 100; ++i) u << (i < 99 ? i * 1e-3 : 0.1005) << ",1\n";
+  for (int i = 0; i < 100; ++i) u << (i == 50 ? 0.0505 : i * 1e-3) << ",1\n";
   u.close();
   r = run_cli("stats '" + uneven + "' --column force --lowpass 20");
   EXPECT_EQ(r.status, 2);

@@ -117,6 +117,23 @@ TEST(ForceStatistics, WindowedStatisticsOfTheFilteredForceAndTheLossOfTheRawOne)
   EXPECT_GT(r.max, s.max + 5.0);
 }
 
+TEST(ForceStatistics, AShortLastIntervalIsLeftOutAndAnUnevenOneInsideRefused) {
+  // A run's last row comes at t_end whatever --every: left out when filtering.
+  std::vector<double> t, f;
+  for (int i = 0; i < 100; ++i) {
+    t.push_back(i * 1e-3);
+    f.push_back(100.0);
+  }
+  t.push_back(0.0994);
+  f.push_back(-1000.0);  // would show in min and loss if it counted
+  ForceStatisticsOptions o;
+  o.lowpass_hz = 20.0;
+  const ForceStatistics s = force_statistics(t, f, o);
+  EXPECT_EQ(s.samples, 100);
+  EXPECT_NEAR(s.min, 100.0, 1e-9);
+  EXPECT_EQ(s.loss_percent, 0.0);
+}
+
 TEST(ForceStatistics, UnevenSamplesAreRefusedWhenFiltering) {
   std::vector<double> t{0.0, 0.001, 0.002, 0.0035}, f{1, 2, 3, 4};
   ForceStatisticsOptions o;

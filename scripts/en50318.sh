@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# Runs the pantograph-catenary reference model at 250 and 300 km/h, computes
+# the EN 50318:2002 quantities over the analysis section (the contact force's
+# statistics with `mbfe stats`, the contact wire's largest uplift at the
+# section's supports) and writes them beside the acceptance ranges into
+# docs/validation-en50318.md (between its markers), with the picture
+# docs/images/en50318_300.png. Prints, last, "N of 16 quantities inside their
+# ranges" and exits 0 only when all 16 are.
+#
+#   scripts/en50318.sh            (about 5 minutes on 2 cores: two 9,600-DOF runs)
+#
+# The models come from scripts/make_catenary.py and models/catenary/en50318_2002.json.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+[[ -x build/bin/mbfe ]] || scripts/build.sh
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+table=models/catenary/en50318_2002.json
+read -r span start first last < <(python3 -c "
+import json; p = json.load(open('$table'))
+print(p['span_length'], p['start'], p['analysis_spans'][0], p['analysis_spans'][-1])")
+x0=$(python3 -c "print(($first - 1) * $span)")
+x1=$(python3 -c "print($last * $span)")
+probes=$(python3 -c "print(','.join('contact_wire@%g' % (k * $span) for k in range($first - 1, $last + 1)))")
+for kmh in 250 300; do
+  v=$(python3 -c "print($kmh / 3.6)")
+  from=$(python3 -c "print(($x0 - $start) / $v)")
+  to=$(python3 -c "print(($x1 - $start) / $v)")
+  echo "en50318: ${kmh} km/h: simulating (analysis section ${x0}-${x1} m, t = ${from}..${to} s)" >&2
+  build/bin/mbfe simulate "models/pantograph_catenary_${kmh}.yaml" --every 5 --probe "$probes" \
+      --out "$out/run_${kmh}.csv" --quiet 2> "$out/run_${kmh}.log" || { cat "$out/run_${kmh}.log" >&2; exit 3; }
+  build/bin/mbfe stats "$out/run_${kmh}.csv" --column force_strip --lowpass 20 --from "$from" --to "$to" --json \
+      > "$out/stats_${kmh}.json"
+  python3 - "$out/run_${kmh}.csv" "$probes" "$from" "$to" > "$out/uplift_${kmh}.txt" <<'PY'
+import csv, sys
+path, probes, t0, t1 = sys.argv[1], sys.argv[2].split(","), float(sys.argv[3]), float(sys.argv[4])
+rows = list(csv.DictReader(open(path)))
+start = {p: float(rows[0][p]) for p in probes}
+# Uplift: the largest rise of the contact wire at a support of the section above its static height.
+print(max(float(r[p]) - start[p] for r in rows if t0 <= float(r["t"]) <= t1 for p in probes) * 1e3)
+PY
+done
+cp "$out/run_300.csv" "$out/picture.csv"
+python3 - "$out" docs/validation-en50318.md <<'PY'
+import json, sys
+out, doc = sys.argv[1], sys.argv[2]
+ranges = {  # EN 50318:2002 reference results (docs/validation-en50318.md gives the source)
+    "mean": {250: (110, 120), 300: (110, 120)},
+    "std": {250: (26, 31), 300: (32, 40)},
+    "statistical_max": {250: (190, 210), 300: (210, 230)},
+    "statistical_min": {250: (20, 40), 300: (-5, 20)},
+    "max": {250: (175, 210), 300: (190, 225)},
+    "min": {250: (50, 75), 300: (30, 55)},
+    "uplift": {250: (48, 55), 300: (55, 65)},
+    "loss_percent": {250: (0, 0), 300: (0, 0)},
+}
+names = {"mean": "mean contact force (N)", "std": "standard deviation (N)", "statistical_max": "statistical max (N)",
+         "statistical_min": "statistical min (N)", "max": "actual max (N)", "min": "actual min (N)",
+         "uplift": "max uplift at support (mm)", "loss_percent": "contact loss (%)"}
+got = {}
+for kmh in (250, 300):
+    s = json.load(open("%s/stats_%d.json" % (out, kmh)))
+    s["uplift"] = float(open("%s/uplift_%d.txt" % (out, kmh)).read())
+    got[kmh] = s
+inside = 0
+lines = ["| quantity | 250 km/h range | 250 km/h mbfe | 300 km/h range | 300 km/h mbfe |", "|---|---|---|---|---|"]
+for key in ranges:
+    cells = []
+    for kmh in (250, 300):
+        lo, hi = ranges[key][kmh]
+        v = got[kmh][key]
+        ok = lo - 1e-9 <= v <= hi + 1e-9
+        inside += ok
+        cells += ["%g to %g" % (lo, hi), "%.1f %s" % (v, "inside" if ok else "**outside**")]
+    lines.append("| %s | %s |" % (names[key], " | ".join(cells)))
+text = open(doc).read()
+begin, end = "<!-- results:begin (scripts/en50318.sh) -->", "<!-- results:end -->"
+i, j = text.index(begin) + len(begin), text.index(end)
+open(doc, "w").write(text[:i] + "\n" + "\n".join(lines) + "\n\n%d of 16 quantities inside their ranges.\n" % inside + text[j:])
+open("%s/inside.txt" % out, "w").write(str(inside))
+PY
+build/bin/mbfe plot "$out/picture.csv" -o docs/images/en50318_300.png --columns force_strip,"$probes" \
+    --title "Pantograph-catenary reference model, 300 km/h" >/dev/null 2>&1 || true
+inside=$(cat "$out/inside.txt")
+echo "${inside} of 16 quantities inside their ranges"
+[[ "$inside" == 16 ]]

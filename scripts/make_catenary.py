@@ -1,0 +1,169 @@
+#!/usr/bin/env python3
+"""Writes pantograph-catenary model files from a parameter table.
+
+    scripts/make_catenary.py [TABLE.json] [--spans N] [--speed KMH] [--name NAME] [-o MODEL.yaml]
+
+TABLE defaults to models/catenary/en50318_2002.json (what each value is and
+where it comes from: docs/validation-en50318.md). Without -o, writes the
+shipped models: models/pantograph_catenary_250.yaml and _300.yaml (the table's
+spans) and models/pantograph_catenary_2span.yaml (two spans at 300 km/h, the
+version CI runs).
+
+The model (docs/catenary.md):
+  - messenger and contact wire as tensioned beams (`tension:`), E I from the
+    table, area from the mass per length and density; messenger on spring
+    supports at every support, contact wire on steady arms (spring + mass);
+    both wires end in pinned anchors one element beyond the first and last
+    support;
+  - droppers as slack links at the table's positions in every span, the
+    contact wire's pre-sag (a parabola, `presag` at mid-span) by form
+    finding (`hold:`), clamp masses on both wires at the droppers;
+  - Rayleigh damping giving the table's damping ratio at both ends of its band;
+  - the pantograph: a carriage driven along the line at the speed (`motion:`),
+    the frame (m2; k2, c2 to the carriage) and the head (m1; k1, c1 to the
+    frame), weightless (gravity cancelled by a force on each), the static
+    force pushing the frame up; the head's strip presses the contact wire
+    from below (`slider_spring`, `side: below`, unilateral);
+  - a static start: wires, droppers and pantograph in equilibrium at t = 0.
+"""
+import argparse
+import json
+import math
+import os
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def number(x):
+    return repr(float(x))
+
+
+def rayleigh(zeta, f1, f2):
+    w1, w2 = 2 * math.pi * f1, 2 * math.pi * f2
+    return 2 * zeta * w1 * w2 / (w1 + w2), 2 * zeta / (w1 + w2)
+
+
+def model_text(p, spans, kmh, name, table_path):
+    L = p["span_length"]
+    length = spans * L
+    le = p["element_length"]
+    elements = int(round(length / le))
+    if abs(elements * le - length) > 1e-9:
+        sys.exit("make_catenary: the element length must divide the line")
+    for s in p["droppers"]["positions"]:
+        if abs(round(s / le) * le - s) > 1e-9:
+            sys.exit("make_catenary: dropper at %g m is not at a node (element %g m)" % (s, le))
+    alpha, beta = rayleigh(p["damping_ratio"], *p["damping_band_hz"])
+    v = kmh / 3.6
+    cw, mw = p["contact_wire"], p["messenger"]
+    pan, con = p["pantograph"], p["contact"]
+    g = 9.81
+    start = p["start"]
+    t_end = (length - 2 * start) / v
+    out = []
+    w = out.append
+    w("# Written by scripts/make_catenary.py from %s (%d spans, %g km/h):" % (os.path.relpath(table_path, ROOT), spans, kmh))
+    w("# edit the table and rerun the script rather than this file.")
+    w("model: %s" % name)
+    w("description: >-")
+    w("  A simple catenary of %d spans of %g m (messenger and contact wire, droppers, steady arms)" % (spans, L))
+    w("  and a two-mass pantograph running along it at %g km/h, after the EN 50318:2002 reference" % kmh)
+    w("  model as the open literature reproduces it (docs/validation-en50318.md says which values are")
+    w("  sourced and which assumed). Static start; the contact force is force_strip.")
+    w("gravity: [0, -9.81]")
+    w("bodies:")
+    w("  - name: carriage            # driven along the line")
+    w("    parent: ground")
+    w("    joint: {type: prismatic, axis: [1, 0], at: [0, 0], motion: \"%s + %s*t\"}" % (number(start), number(v)))
+    w("    mass: 0")
+    w("    inertia: 0")
+    w("  - name: frame               # m2")
+    w("    parent: carriage")
+    w("    joint: {type: prismatic, axis: [0, 1], at: [0, 0]}")
+    w("    mass: %s" % number(pan["m2"]))
+    w("    inertia: 0")
+    w("  - name: head                # m1, its strip touches the contact wire")
+    w("    parent: frame")
+    w("    joint: {type: prismatic, axis: [0, 1], at: [0, 0]}")
+    w("    mass: %s" % number(pan["m1"]))
+    w("    inertia: 0")
+    w("    points: {strip: [0, 0]}")
+    w("loads:")
+    w("  - {type: spring_damper, joint: frame, stiffness: %s, damping: %s, rest: 0.0}   # k2, c2" % (number(pan["k2"]), number(pan["c2"])))
+    w("  - {type: spring_damper, joint: head, stiffness: %s, damping: %s, rest: 0.0}    # k1, c1" % (number(pan["k1"]), number(pan["c1"])))
+    w("  - {type: force, body: frame, value: [0, %s]}   # static force %g N + the frame's weight cancelled" % (number(pan["static_force"] + pan["m2"] * g), pan["static_force"]))
+    w("  - {type: force, body: head, value: [0, %s]}    # the head's weight cancelled" % number(pan["m1"] * g))
+    supports = [i * L for i in range(spans + 1)]
+    anchor_end = length  # anchors: pinned at both ends of each wire
+    w("beams:")
+    for wire, props, y in (("messenger", mw, p["encumbrance"]), ("contact_wire", cw, 0.0)):
+        area = props["mass_per_length"] / props["density"]
+        inertia = props["EI"] / props["youngs_modulus"]
+        w("  - name: %s" % wire)
+        w("    origin: [0, %s]" % number(y))
+        w("    length: %s" % number(length))
+        w("    elements: %d" % elements)
+        w("    section: {area: %s, inertia: %s}" % (number(area), number(inertia)))
+        w("    material: {youngs_modulus: %s, density: %s}" % (number(props["youngs_modulus"]), number(props["density"])))
+        w("    tension: %s" % number(props["tension"]))
+        w("    damping: {rayleigh: {alpha: %s, beta: %s}}" % (number(alpha), number(beta)))
+        w("    supports:")
+        for s in supports:
+            if s == 0.0 or s == anchor_end:
+                w("      - {at: %s, type: pinned}" % number(s))
+            elif wire == "messenger":
+                w("      - {at: %s, type: spring, stiffness: %s}" % (number(s), number(p["messenger_support"]["stiffness"])))
+            else:
+                w("      - {at: %s, type: spring, stiffness: %s, mass: %s}" % (number(s), number(p["steady_arm"]["stiffness"]), number(p["steady_arm"]["mass"])))
+        clamp = p["clamps"][wire]
+        w("    masses:")
+        for i in range(spans):
+            for d in p["droppers"]["positions"]:
+                w("      - {at: %s, mass: %s}" % (number(i * L + d), number(clamp)))
+    w("links:")
+    k = p["droppers"]["stiffness"]
+    for i in range(spans):
+        for j, d in enumerate(p["droppers"]["positions"]):
+            s = i * L + d
+            sag = -p["presag"] * 4.0 * d * (L - d) / (L * L)
+            w("  - {name: d%d_%d, a: {beam: contact_wire, at: %s}, b: {beam: messenger, at: %s}, stiffness: %s, slack: %s, hold: %s}"
+              % (i + 1, j + 1, number(s), number(s), number(k), "true" if p["droppers"]["slack"] else "false", number(sag)))
+    w("contacts:")
+    w("  - {name: strip, type: slider_spring, body: head, point: strip, beam: contact_wire, stiffness: %s, damping: %s, unilateral: true, side: below}"
+      % (number(con["stiffness"]), number(con["damping"])))
+    w("initial: {static: true}")
+    w("simulation: {integrator: generalized_alpha, step: %s, t_end: %s}" % (number(p["step"]), number(t_end)))
+    return "\n".join(out) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("table", nargs="?", default=os.path.join(ROOT, "models", "catenary", "en50318_2002.json"))
+    ap.add_argument("--spans", type=int)
+    ap.add_argument("--speed", type=float, help="km/h")
+    ap.add_argument("--name")
+    ap.add_argument("-o", "--out")
+    a = ap.parse_args()
+    with open(a.table) as f:
+        p = json.load(f)
+    if a.out:
+        spans = a.spans or p["spans"]
+        kmh = a.speed or p["speeds_kmh"][0]
+        name = a.name or "pantograph_catenary"
+        with open(a.out, "w") as f:
+            f.write(model_text(p, spans, kmh, name, a.table))
+        return
+    for kmh in p["speeds_kmh"]:
+        path = os.path.join(ROOT, "models", "pantograph_catenary_%d.yaml" % kmh)
+        with open(path, "w") as f:
+            f.write(model_text(p, p["spans"], kmh, "pantograph_catenary_%d" % kmh, a.table))
+        print("make_catenary: wrote", os.path.relpath(path, ROOT))
+    path = os.path.join(ROOT, "models", "pantograph_catenary_2span.yaml")
+    with open(path, "w") as f:
+        f.write(model_text(p, 2, max(p["speeds_kmh"]), "pantograph_catenary_2span", a.table))
+    print("make_catenary: wrote", os.path.relpath(path, ROOT))
+
+
+if __name__ == "__main__":
+    main()
