@@ -166,7 +166,12 @@ class SecondOrderStepper final : public Stepper {
       // round-off of Phi into an acceleration noise ~ eps |q| / c_q, a floor
       // under the rates' correction that no iteration lowers.
       const bool at_noise_floor = it > 0 && position <= kNewtonTol && correction > kSlowContraction * previous;
-      if (correction <= kNewtonTol || at_noise_floor) {
+      // With the contraction theta seen, the corrections still to come sum to
+      // at most theta / (1 - theta) of this one: below the tolerance, the
+      // next iteration would not change the answer (Hairer and Wanner's test).
+      const double theta = it > 0 ? correction / previous : 1.0;
+      const bool next_below = theta < 1.0 && correction * theta / (1.0 - theta) <= kNewtonTol;
+      if (correction <= kNewtonTol || at_noise_floor || next_below) {
         if (!fresh && it + 1 > kRefreshAfterIterations) refresh_ = true;  // for the next step
         return true;
       }
