@@ -271,7 +271,9 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   // The stable limit of the linearised system at the initial state tells an
   // instability of the integrator from a fault of the model.
   std::optional<StepLimit> limit;
-  if (report.run.status != SimulationStatus::kInterrupted) {
+  // The linearisation is a dense eigenproblem: only for models of moderate size.
+  constexpr int kMaxDiagnosedCoordinates = 3000;
+  if (report.run.status != SimulationStatus::kInterrupted && n <= kMaxDiagnosedCoordinates) {
     try {
       // The eigenvalues `mbfe stability` takes: a real part at round-off of
       // the modulus is zero (an undamped mode), not growth.

@@ -67,6 +67,15 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
         return out;
       }
       case ModelKind::kCoupled: {
+        // The linearisation is a dense eigenproblem of twice the coordinates:
+        // hours and gigabytes beyond a few thousand.
+        constexpr int kMaxLinearizedCoordinates = 3000;
+        const int n_coupled = static_cast<int>(model.ir().bodies.size()) + model.beams().dof;
+        if (n_coupled > kMaxLinearizedCoordinates)
+          throw InvalidInput(model.ir().source_path + ": the coupled system has " + std::to_string(n_coupled) +
+                             " coordinates; its linearisation is a dense eigenproblem and handles at most " +
+                             std::to_string(kMaxLinearizedCoordinates) +
+                             " (the beams alone: mbfe modal; runs: an implicit integrator needs no limit)");
         const std::shared_ptr<CoupledDynamics> dynamics = model.make_dynamics(adjusted);
         dynamics->impose_motion(0.0, q0, qd0);
         if (static_start) coupled_static_state(model.ir(), *dynamics, q0, qd0);
