@@ -13,8 +13,7 @@ The model (docs/catenary.md):
   - messenger and contact wire as tensioned beams (`tension:`), E I from the
     table, area from the mass per length and density; messenger on spring
     supports at every support, contact wire on steady arms (spring + mass);
-    both wires end in pinned anchors one element beyond the first and last
-    support;
+    both wires pinned at the first and last support (the anchors);
   - droppers as slack links at the table's positions in every span, the
     contact wire's pre-sag (a parabola, `presag` at mid-span) by form
     finding (`hold:`), clamp masses on both wires at the droppers;

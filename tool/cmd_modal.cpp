@@ -11,6 +11,7 @@
 #include "api/mbfe.h"
 #include "frontend/parse_model.h"
 #include "runtime/damping/beam_model.h"
+#include "runtime/simulation/invalid_input.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "tool/modal_report.h"
@@ -117,14 +118,21 @@ int cmd_modal(const Args& args) {
   if (step && !parsed.has("plot")) throw UsageError("--step goes with --plot FILE.png");
   // A coupled model (bodies + beams): also the linearised, partitioned system
   // at the initial state (runtime/multibody/linearization.h), original and adjusted.
-  const bool coupled = !m.bodies.empty() && !beam_name;
+  bool coupled = !m.bodies.empty() && !beam_name;
   runtime::ModelSpectrum coupled_original_model, coupled_adjusted_model;
   bool coupled_any_adjustment = false;
+  std::string coupled_skipped;  // why the coupled spectrum is not shown (a model too large for it)
   if (coupled) {
     for (const ir::Beam& b : m.beams) coupled_any_adjustment = coupled_any_adjustment || b.adjustment.active();
     const Model model = Model::load(path);
-    coupled_original_model = model.spectrum(false);
-    if (coupled_any_adjustment) coupled_adjusted_model = model.spectrum(true);
+    try {
+      coupled_original_model = model.spectrum(false);
+      if (coupled_any_adjustment) coupled_adjusted_model = model.spectrum(true);
+    } catch (const runtime::InvalidInput& e) {
+      // The beams' spectra are still worth printing.
+      coupled_skipped = e.what();
+      coupled = false;
+    }
   }
   const runtime::StateSpectrum& coupled_original = coupled_original_model.full;
   const runtime::StateSpectrum& coupled_adjusted = coupled_adjusted_model.full;
@@ -207,6 +215,8 @@ int cmd_modal(const Args& args) {
                 << growing_note(coupled_adjusted_model) << "\n";
     }
   }
+  if (!coupled_skipped.empty())
+    std::cerr << "mbfe modal: the coupled system's spectrum is left out: " << coupled_skipped << "\n";
   return 0;
 }
 

@@ -131,9 +131,13 @@ BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity) {
   sys.C = beam.rayleigh_alpha * sys.M + beam.rayleigh_beta * sys.K;
   std::vector<Eigen::Triplet<double>> dk, dc, dm;
   std::vector<Eigen::Triplet<double>> spring_rows;  // sqrt(k) on w: rows of the stiffness factor
+  // The weight of a lumped mass on w: m (g . n), n the beam's normal.
+  const double g_normal = gravity[0] * nx + gravity[1] * ny;
   for (const ir::Support& sup : beam.supports) {
     if (sup.type != ir::SupportType::kSpring) continue;
-    const int w = sys.full_to_free[nd * (sup.node >= 0 ? sup.node : node_at(beam, sup.at, "support"))];
+    const int support_node = sup.node >= 0 ? sup.node : node_at(beam, sup.at, "support");
+    p_full[nd * support_node] += sup.mass * g_normal;
+    const int w = sys.full_to_free[nd * support_node];
     if (w < 0) continue;
     if (sup.stiffness != 0.0) dk.emplace_back(w, w, sup.stiffness);
     if (sup.damping != 0.0) dc.emplace_back(w, w, sup.damping);
@@ -146,6 +150,7 @@ BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity) {
       throw std::invalid_argument(beam_error(beam, "point mass node " + std::to_string(node) +
                                                        " is outside 0.." + std::to_string(ne)));
     }
+    p_full[nd * node] += pm.mass * g_normal;
     const int w = sys.full_to_free[nd * node];
     if (w >= 0) dm.emplace_back(w, w, pm.mass);  // else: the support carries it
   }

@@ -71,6 +71,7 @@ struct LinkSlackTally {
   int slackenings = 0;   // transitions from taut to slack
   double time_slack = 0.0;  // s
   bool slack = false;    // at the last accepted step
+  bool seen = false;     // a step has been counted (a link slack from the start has not slackened)
 };
 
 }  // namespace mbfe::runtime

@@ -1,5 +1,6 @@
 #include "runtime/multibody/coupled_implicit_system.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -211,6 +212,40 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
     }
   }
   if (m > 0) {
+    // The contacts' geometric stiffness d(G^T lambda)/dq that rigid_tangents
+    // leaves out: the beam rows against q_b (the slider's position moves its
+    // shape functions) and every row against the beam DOFs the contacts
+    // touch, by central differences of the contact kernels.
+    std::vector<int> columns;
+    cc.evaluate(t, qm_.data(), qm_.data() + nb, nullptr, nullptr, cv_);
+    for (int j = 0; j < nb; ++j)
+      if (!is_driven_[j]) columns.push_back(j);
+    for (int r = 0; r < m; ++r)
+      for (int j = 0; j < 4; ++j)
+        if (cv_.jcol(r, j) >= 0) columns.push_back(nb + cv_.jcol(r, j));
+    std::sort(columns.begin(), columns.end());
+    columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+    auto contact_force = [&](Eigen::VectorXd& out) {
+      cc.evaluate(t, qm_.data(), qm_.data() + nb, nullptr, nullptr, cv_);
+      out.setZero(n);
+      out.head(nb).noalias() = cv_.jb.transpose() * lambda;
+      for (int r = 0; r < m; ++r)
+        for (int j = 0; j < 4; ++j)
+          if (cv_.jcol(r, j) >= 0) out[nb + cv_.jcol(r, j)] += cv_.je(r, j) * lambda[r];
+    };
+    for (int j : columns) {
+      const double x0 = qm_[j];
+      const double step = kDifferenceStep * (1.0 + std::abs(x0));
+      qm_[j] = x0 + step;
+      contact_force(tau_);
+      qm_[j] = x0 - step;
+      contact_force(tau2_);
+      qm_[j] = x0;
+      for (int i = j < nb ? nb : 0; i < n; ++i) {  // q_b columns: the rigid rows are in rigid_tangents
+        const double d = (tau_[i] - tau2_[i]) / (2.0 * step);
+        if (d != 0.0) add(i, j, c_q * d);
+      }
+    }
     cc.evaluate(t, qm_.data(), qm_.data() + nb, nullptr, nullptr, cv_);
     for (int r = 0; r < m; ++r) {
       for (int j = 0; j < nb; ++j) {

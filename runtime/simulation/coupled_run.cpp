@@ -196,7 +196,7 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   for (int k = 0; k < springs.count(); ++k) tally[k].name = springs.name(k);
   std::vector<LinkSlackTally> link_tally;
   for (int k = 0; k < links.count(); ++k)
-    if (links.can_go_slack(k)) link_tally.push_back({links.name(k), 0, 0.0, false});
+    if (links.can_go_slack(k)) link_tally.push_back({links.name(k), 0, 0.0, false, false});
   double t_prev = 0.0;
   if (springs.count() > 0 || !link_tally.empty()) {
     options.on_step = [&](double t, const Eigen::VectorXd& y) {
@@ -207,8 +207,9 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
         LinkSlackTally& c = link_tally[static_cast<std::size_t>(i++)];
         const bool slack = links.states()[k].slack;
         if (slack) c.time_slack += t - t_prev;
-        if (slack && !c.slack) ++c.slackenings;
+        if (slack && !c.slack && c.seen) ++c.slackenings;
         c.slack = slack;
+        c.seen = true;
       }
       for (int k = 0; k < springs.count(); ++k) {
         const SpringContactState& st = springs.states()[k];

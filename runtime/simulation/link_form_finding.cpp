@@ -81,11 +81,15 @@ LinkFormFinding find_link_rest_offsets(const ir::Model& model, const BeamModel& 
   for (std::size_t l = 0; l < nl; ++l) {
     const ir::Link& link = model.links[l];
     out.tension[l] = link.stiffness * (Eigen::VectorXd(g[l]).dot(out.deflection) - out.rest[l]);
-    if (link.slack && link.hold && out.tension[l] < 0.0) {
+    if (link.slack && out.tension[l] < 0.0) {
+      // The equilibrium above assumes every link taut: a slack one in
+      // compression makes it wrong.
       std::ostringstream os;
       os << model.source_path << ":" << link.loc.line << ":" << link.loc.column << ": link '" << link.name
-         << "' would have to push (tension " << out.tension[l] << " N) to hold its point at " << *link.hold
-         << " m; a slack link only pulls";
+         << "' would have to push (tension " << out.tension[l] << " N)";
+      if (link.hold) os << " to hold its point at " << *link.hold << " m";
+      else os << " in the static equilibrium of the beams and links";
+      os << "; a slack link only pulls";
       throw InvalidInput(os.str());
     }
   }

@@ -161,15 +161,17 @@ bool rigid_settled_state(const ir::Model& model, RigidSystem& system, double ome
   Eigen::VectorXd state = y, ydot;
   state.tail(n).setZero();
   system.impose_motion(0.0, state);
-  for (long k = 0; k < max_steps; ++k) {
+  bool settled = false;
+  for (long k = 0; k < max_steps && !settled; ++k) {
     // Semi-implicit Euler with the damping -c q' taken implicitly.
     system.rhs(0.0, state, ydot);
     state.tail(n) = (state.tail(n) + h * ydot.tail(n)) / (1.0 + h * c);
     state.head(n) += h * state.tail(n);
     system.impose_motion(0.0, state);
     if (!state.allFinite()) return false;
-    if (state.tail(n).cwiseAbs().maxCoeff() * h <= kSettledRate * h * omega_min * (1.0 + state.head(n).norm())) break;
+    settled = state.tail(n).cwiseAbs().maxCoeff() <= kSettledRate * omega_min * (1.0 + state.head(n).norm());
   }
+  if (!settled) return false;
   try {
     rigid_static_state(model, system, state);
   } catch (const std::exception&) {

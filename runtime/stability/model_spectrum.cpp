@@ -75,7 +75,7 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
           throw InvalidInput(model.ir().source_path + ": the coupled system has " + std::to_string(n_coupled) +
                              " coordinates; its linearisation is a dense eigenproblem and handles at most " +
                              std::to_string(kMaxLinearizedCoordinates) +
-                             " (the beams alone: mbfe modal; runs: an implicit integrator needs no limit)");
+                             " (each beam's own spectrum: mbfe modal; runs: an implicit integrator needs no limit)");
         const std::shared_ptr<CoupledDynamics> dynamics = model.make_dynamics(adjusted);
         dynamics->impose_motion(0.0, q0, qd0);
         if (static_start) coupled_static_state(model.ir(), *dynamics, q0, qd0);
