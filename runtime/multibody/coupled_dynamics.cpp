@@ -134,34 +134,35 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
     cc_.evaluate(t, qb, q.data() + nb_, qbd, qd.data() + nb_, cv_);
   }
   for (const CoupledBeam& b : beams_) extra = extra || static_cast<bool>(b.time_loads);
-  // Beam side: r_c = P - (C qd + K q), a_c0 = M_c^-1 r_c.
+  // Loads that change with time and spring and link forces, per beam.
+  if (extra) {
+    for (std::size_t k = 0; k < beams_.size(); ++k) {
+      if (!beams_[k].time_loads) continue;
+      const int off = cc_.beam_offset(static_cast<int>(k));
+      beams_[k].time_loads(t, nodal_);
+      for (const NodalForce& f : nodal_) fc_extra_[off + f.index] += f.value;
+    }
+  }
+  // Beam side: a_c0 = M_c^-1 (P - (C qd + K q) + f_extra), one solve with M_c
+  // per beam; a beam that gives its free acceleration without a solve needs
+  // one for f_extra alone, when it has any.
   for (std::size_t k = 0; k < beams_.size(); ++k) {
     const int off = nb_ + cc_.beam_offset(static_cast<int>(k));
     const int nk = beams_[k].mesh.num_free;
+    const auto fk = fc_extra_.segment(off - nb_, nk);
     if (beams_[k].acceleration) {
       beams_[k].acceleration(q.segment(off, nk), qd.segment(off, nk), ac0_.segment(off - nb_, nk));
+      if (extra && !fk.isZero(0.0)) {
+        tmp_ = fk;
+        ac0_.segment(off - nb_, nk) += mc_factor_[k]->solve(tmp_);
+      }
       continue;
     }
     Eigen::Ref<Eigen::VectorXd> rck = rc_.segment(off - nb_, nk);
     beams_[k].force(q.segment(off, nk), qd.segment(off, nk), rck);
     rck = beams_[k].P - rck;
+    if (extra) rck += fk;
     ac0_.segment(off - nb_, nk) = mc_factor_[k]->solve(rck);
-  }
-  // Loads that change with time and spring forces: one more solve with M_c
-  // per beam they touch.
-  if (extra) {
-    for (std::size_t k = 0; k < beams_.size(); ++k) {
-      const int off = cc_.beam_offset(static_cast<int>(k));
-      const int nk = beams_[k].mesh.num_free;
-      Eigen::Ref<Eigen::VectorXd> fk = fc_extra_.segment(off, nk);
-      if (beams_[k].time_loads) {
-        beams_[k].time_loads(t, nodal_);
-        for (const NodalForce& f : nodal_) fk[f.index] += f.value;
-      }
-      if (fk.isZero(0.0)) continue;
-      tmp_ = fk;
-      ac0_.segment(off, nk) += mc_factor_[k]->solve(tmp_);
-    }
   }
   // W = M_c^-1 J_c^T column by column (each row of J_c lives on one beam, on
   // at most 4 of its DOFs): a combination of the cached columns M_c^-1 e_k.
