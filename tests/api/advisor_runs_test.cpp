@@ -15,15 +15,12 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "tests/support/recorded_rows.h"
 
 namespace mbfe {
 namespace {
 
-class Rows : public runtime::SimulationObserver {
- public:
-  void row(const runtime::OutputRow& row) override { values.push_back(row.values); }
-  std::vector<std::vector<double>> values;
-};
+using Rows = test::RecordedRows;
 
 runtime::SimulationReport run(const Model& model, const char* integrator, double step, double t_end, Rows& rows) {
   runtime::SimulationRequest r;

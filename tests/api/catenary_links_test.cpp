@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "tests/support/recorded_rows.h"
 #include "runtime/simulation/static_start.h"
 
 namespace mbfe {
@@ -73,18 +74,7 @@ initial: {static: true}
 simulation: {integrator: rk4, step: 1.0e-5, t_end: 1.0}
 )yaml";
 
-class Rows : public runtime::SimulationObserver {
- public:
-  void begin(const runtime::OutputLayout& layout) override { columns = layout.columns; }
-  void row(const runtime::OutputRow& row) override { values.push_back(row.values); }
-  int column(const std::string& name) const {
-    const auto it = std::find(columns.begin(), columns.end(), name);
-    EXPECT_NE(it, columns.end()) << name;
-    return static_cast<int>(it - columns.begin());
-  }
-  std::vector<std::string> columns;
-  std::vector<std::vector<double>> values;
-};
+using Rows = test::RecordedRows;
 
 runtime::SimulationReport run(const Model& m, const char* integrator, double h, double t_end, long every, Rows& rows) {
   runtime::SimulationRequest r;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "tests/support/recorded_rows.h"
 
 namespace mbfe {
 namespace {
@@ -51,13 +52,7 @@ double theta_dd(double t, double th, double) {
          (kRodInertia + kRodMass * kCom * kCom);
 }
 
-class Rows : public runtime::SimulationObserver {
- public:
-  void begin(const runtime::OutputLayout& layout) override { columns = layout.columns; }
-  void row(const runtime::OutputRow& row) override { values.push_back(row.values); }
-  std::vector<std::string> columns;
-  std::vector<std::vector<double>> values;
-};
+using Rows = test::RecordedRows;
 
 TEST(DrivenJoint, CartPendulumFollowsTheMotionWithTheHandDerivedDriveForce) {
   const Model model = Model::parse(kModel, "driven_cart_pendulum.yaml");

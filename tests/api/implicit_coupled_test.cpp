@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "tests/support/recorded_rows.h"
 
 namespace mbfe {
 namespace {
@@ -64,19 +65,7 @@ constexpr double kReferenceStep = 4e-6; // s: RK4, a third of its stable limit (
 constexpr double kSecondOrderLow = 3.0, kSecondOrderHigh = 5.5;
 constexpr double kFirstOrderLow = 1.6, kFirstOrderHigh = 2.6;
 
-class Rows : public runtime::SimulationObserver {
- public:
-  void begin(const runtime::OutputLayout& layout) override { columns = layout.columns; }
-  void row(const runtime::OutputRow& row) override { values.push_back(row.values); }
-  int column(const std::string& name) const {
-    for (std::size_t i = 0; i < columns.size(); ++i)
-      if (columns[i] == name) return static_cast<int>(i);
-    ADD_FAILURE() << "no column " << name;
-    return 0;
-  }
-  std::vector<std::string> columns;
-  std::vector<std::vector<double>> values;
-};
+using Rows = test::RecordedRows;
 
 runtime::SimulationRequest request(const std::string& integrator, double step, double t_end) {
   runtime::SimulationRequest r;

@@ -2,6 +2,7 @@
 // pendulum given as text, the linked solver of the double pendulum, requests
 // the runtime must refuse, and two threads simulating one Model.
 #include "api/mbfe.h"
+#include "tests/support/recorded_rows.h"
 
 #include <gtest/gtest.h>
 
@@ -41,13 +42,7 @@ constexpr double kLinearizationTol = 1e-7;
 
 std::string source_path(const std::string& relative) { return std::string(MBFE_SOURCE_DIR) + "/" + relative; }
 
-class Rows : public runtime::SimulationObserver {
- public:
-  void begin(const runtime::OutputLayout& layout) override { columns = layout.columns, units = layout.units; }
-  void row(const runtime::OutputRow& row) override { values.push_back(row.values); }
-  std::vector<std::string> columns, units;
-  std::vector<std::vector<double>> values;
-};
+using Rows = test::RecordedRows;
 
 runtime::SimulationRequest rk4(double step, double t_end) {
   runtime::SimulationRequest request;

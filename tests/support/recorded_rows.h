@@ -14,7 +14,10 @@ namespace mbfe::test {
 
 class RecordedRows : public runtime::SimulationObserver {
  public:
-  void begin(const runtime::OutputLayout& layout) override { columns = layout.columns; }
+  void begin(const runtime::OutputLayout& layout) override {
+    columns = layout.columns;
+    units = layout.units;
+  }
   void row(const runtime::OutputRow& row) override { values.push_back(row.values); }
 
   /// Index of column `name`; a test failure (and column 0) when there is none.
@@ -36,7 +39,7 @@ class RecordedRows : public runtime::SimulationObserver {
     return out;
   }
 
-  std::vector<std::string> columns;
+  std::vector<std::string> columns, units;
   std::vector<std::vector<double>> values;
 };
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tests/support/cli.h"
+#include "tests/support/filter_golden.h"
 
 namespace mbfe {
 namespace {
@@ -23,31 +24,12 @@ using test::run_cli;
 // butterworth_test.cpp); printed by --json to 17 digits.
 constexpr double kSignalTol = 1e-8;
 
-struct Golden {
-  std::vector<double> t, x, y;
-};
-
-Golden golden() {
-  std::ifstream in(std::string(MBFE_SOURCE_DIR) + "/tests/runtime/signal/filter_golden.csv");
-  Golden g;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line[0] == 't') continue;
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream ss(line);
-    double t, x, y;
-    ss >> t >> x >> y;
-    g.t.push_back(t);
-    g.x.push_back(x);
-    g.y.push_back(y);
-  }
-  return g;
-}
+using Golden = test::FilterGolden;
 
 std::string tmp(const std::string& name) { return ::testing::TempDir() + "/" + name; }
 
 TEST(CmdStats, JsonOfAFilteredWindowMatchesScipysSignal) {
-  const Golden g = golden();
+  const Golden g = test::read_filter_golden();
   const std::string csv = tmp("stats_force.csv");
   {
     std::ofstream out(csv);

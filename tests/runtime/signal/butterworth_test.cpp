@@ -13,6 +13,7 @@
 
 #include "runtime/signal/butterworth.h"
 #include "runtime/signal/force_statistics.h"
+#include "tests/support/filter_golden.h"
 
 namespace mbfe::runtime {
 namespace {
@@ -24,38 +25,10 @@ constexpr double kCoefficientTol = 1e-12;
 // filter with poles near 0.93: rounding grows to ~1e-11 N.
 constexpr double kSignalTol = 1e-8;
 
-struct Golden {
-  std::vector<double> b, a, t, x, y;
-};
-
-Golden read_golden() {
-  std::ifstream in(std::string(MBFE_SOURCE_DIR) + "/tests/runtime/signal/filter_golden.csv");
-  Golden g;
-  std::string line;
-  auto numbers = [](const std::string& text) {
-    std::vector<double> out;
-    std::istringstream ss(text);
-    double v;
-    while (ss >> v) out.push_back(v);
-    return out;
-  };
-  while (std::getline(in, line)) {
-    if (line.rfind("# b = ", 0) == 0) g.b = numbers(line.substr(6));
-    else if (line.rfind("# a = ", 0) == 0) g.a = numbers(line.substr(6));
-    else if (line.empty() || line[0] == '#' || line[0] == 't') continue;
-    else {
-      std::replace(line.begin(), line.end(), ',', ' ');
-      const std::vector<double> v = numbers(line);
-      g.t.push_back(v.at(0));
-      g.x.push_back(v.at(1));
-      g.y.push_back(v.at(2));
-    }
-  }
-  return g;
-}
+using Golden = test::FilterGolden;
 
 TEST(Butterworth, DesignAndZeroPhaseFilterMatchScipy) {
-  const Golden g = read_golden();
+  const Golden g = test::read_filter_golden();
   ASSERT_EQ(g.t.size(), 2000u);
   const IirFilter f = butterworth_lowpass(4, 20.0, 1000.0);
   ASSERT_EQ(f.b.size(), g.b.size());
@@ -77,7 +50,7 @@ TEST(Butterworth, RefusesWhatItCannotFilter) {
 }
 
 TEST(ForceStatistics, WindowedStatisticsOfTheFilteredForceAndTheLossOfTheRawOne) {
-  const Golden g = read_golden();
+  const Golden g = test::read_filter_golden();
   ForceStatisticsOptions o;
   o.lowpass_hz = 20.0;
   o.from = 0.5;
