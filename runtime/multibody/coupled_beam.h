@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <functional>
+#include <memory>
 
 #include "runtime/fem/beam_loads.h"
 #include "runtime/fem/beam_system.h"
@@ -23,6 +24,13 @@ BeamForceFn sparse_beam_force(Eigen::SparseMatrix<double> C, Eigen::SparseMatrix
 /// f = C qd + K q with dense C, K (e.g. eq (27) adjusted matrices).
 BeamForceFn dense_beam_force(Eigen::MatrixXd C, Eigen::MatrixXd K);
 
+/// The low-rank part of a beam's C and K (the low-rank adjusted beam,
+/// docs/damping-adjustment.md): C q' + K q gains U (d_C .* U^T q' + d_K .* U^T q).
+struct BeamLowRank {
+  Eigen::MatrixXd U;         // n x m, M Phi_L (the kept modes)
+  Eigen::VectorXd d_C, d_K;  // m
+};
+
 /// One beam as the coupled system sees it.
 struct CoupledBeam {
   BeamMesh mesh;
@@ -37,10 +45,13 @@ struct CoupledBeam {
   /// Optional: the loads that change with time (runtime/fem/beam_loads.h), on
   /// this beam's free DOFs.
   TimeLoadFn time_loads;
-  /// The sparse C and K of `force` when it is C q' + K q with sparse matrices
-  /// (the original Rayleigh beam); empty for the adjusted operators. The
-  /// Newton matrix of the implicit steppers is built from them.
+  /// The sparse C and K of `force`, which is C q' + K q, plus the low-rank
+  /// part when `low_rank` is set: the original Rayleigh beam's own C and K;
+  /// for the low-rank adjusted beam c* M and k* M with the kept modes'
+  /// corrections in `low_rank`; empty for eq (27) over every mode. The Newton
+  /// matrix of the implicit steppers is built from them.
   Eigen::SparseMatrix<double> C, K;
+  std::shared_ptr<const BeamLowRank> low_rank;
 };
 
 /// Mesh of an assembled beam (uniform elements).

@@ -23,8 +23,9 @@ CoupledImplicitSystem::CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dy
   for (const CoupledBeam& b : dyn_->beams()) {
     if (b.mesh.num_free > 0 && (b.C.rows() != b.mesh.num_free || b.K.rows() != b.mesh.num_free)) {
       throw std::invalid_argument("beam '" + b.mesh.name +
-                                  "': the implicit integrators take the beam's own Rayleigh C and K; "
-                                  "its adjusted operators are for explicit integrators (run it with --adjust off)");
+                                  "': the implicit integrators take a beam's sparse C and K, with a low-rank part "
+                                  "for the adjustment's cap; this adjustment changes every mode on its own (policy "
+                                  "keep_slow or paper_eq25): run it explicitly, or with --adjust off");
     }
   }
   const int nb = dyn_->nb(), nc = dyn_->nc();
@@ -80,6 +81,12 @@ void CoupledImplicitSystem::residual(double t, const Eigen::VectorXd& q, const E
     rk.noalias() = b.M * a.segment(nb + off, nk);
     rk.noalias() += b.C * v.segment(nb + off, nk);
     rk.noalias() += b.K * q.segment(nb + off, nk);
+    if (b.low_rank) {
+      const BeamLowRank& lr = *b.low_rank;
+      low_rank_r_.noalias() = lr.d_C.cwiseProduct(lr.U.transpose() * v.segment(nb + off, nk));
+      low_rank_r_.noalias() += lr.d_K.cwiseProduct(lr.U.transpose() * q.segment(nb + off, nk));
+      rk.noalias() += lr.U * low_rank_r_;
+    }
     rk -= b.P + fc_.segment(off, nk);
     if (b.time_loads) {
       b.time_loads(t, nodal_);
@@ -270,6 +277,37 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
        << "); are the contacts independent?";
     throw std::runtime_error(os.str());
   }
+  factorize_low_rank(c_q, c_v);
+}
+
+void CoupledImplicitSystem::factorize_low_rank(double c_q, double c_v) {
+  // The low-rank beams add W D W^T to the sparse matrix B, W = U on each
+  // beam's rows, D = c_v d_C + c_q d_K. Woodbury, in the form that never
+  // inverts D (an entry may be zero):
+  //   (B + W D W^T)^-1 = B^-1 - Z (I + D W^T Z)^-1 D W^T B^-1,   Z = B^-1 W.
+  const int nb = dyn_->nb(), n = dyn_->n(), m = dyn_->m();
+  const std::vector<CoupledBeam>& beams = dyn_->beams();
+  const ContactConstraints& cc = dyn_->constraints();
+  low_rank_beams_.clear();
+  int width = 0;
+  for (std::size_t k = 0; k < beams.size(); ++k) {
+    if (!beams[k].low_rank || beams[k].low_rank->U.cols() == 0) continue;
+    low_rank_beams_.push_back({static_cast<int>(k), nb + cc.beam_offset(static_cast<int>(k)), width});
+    width += static_cast<int>(beams[k].low_rank->U.cols());
+  }
+  if (width == 0) return;
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(n + m, width);
+  low_rank_d_.resize(width);
+  for (const LowRankBlock& blk : low_rank_beams_) {
+    const BeamLowRank& lr = *beams[blk.beam].low_rank;
+    W.block(blk.row, blk.col, lr.U.rows(), lr.U.cols()) = lr.U;
+    low_rank_d_.segment(blk.col, lr.U.cols()) = c_v * lr.d_C + c_q * lr.d_K;
+  }
+  low_rank_z_ = lu_.solve(W);
+  Eigen::MatrixXd capacity = low_rank_d_.asDiagonal() * (W.transpose() * low_rank_z_);
+  capacity.diagonal().array() += 1.0;
+  capacity_lu_.compute(capacity);
+  low_rank_w_ = std::move(W);
 }
 
 void CoupledImplicitSystem::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& c, Eigen::VectorXd& da,
@@ -279,6 +317,11 @@ void CoupledImplicitSystem::solve(const Eigen::VectorXd& r, const Eigen::VectorX
   rhs_.head(n) = r;
   rhs_.tail(m) = c;
   sol_ = lu_.solve(rhs_);
+  if (low_rank_z_.cols() > 0) {
+    low_rank_s_.noalias() = low_rank_w_.transpose() * sol_;
+    low_rank_s_ = low_rank_d_.cwiseProduct(low_rank_s_);
+    sol_.noalias() -= low_rank_z_ * capacity_lu_.solve(low_rank_s_);
+  }
   da = sol_.head(n);
   dlambda = sol_.tail(m);
 }

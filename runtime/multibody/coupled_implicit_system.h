@@ -11,10 +11,13 @@
 // they are, the rigid block dense from the closed-form Jacobian kernel of the
 // generated solver, each slider_spring and each taut link as the rank-one
 // term k g g^T (c g g^T for its damper), and the contact rows G = [J_b J_c] bordering it;
-// the whole is one sparse LU.
+// the whole is one sparse LU. A low-rank adjusted beam (C = c* M + U diag(d_C) U^T,
+// likewise K) puts its sparse part there and its low-rank part into a
+// Woodbury correction of the solves.
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <memory>
@@ -28,8 +31,8 @@ namespace mbfe::runtime {
 
 class CoupledImplicitSystem final : public AugmentedSystem, public SecondOrderSystem {
  public:
-  /// @throws std::invalid_argument if a beam has no sparse C and K (the
-  ///         adjusted operators of a beam with an `adjustment:` block).
+  /// @throws std::invalid_argument if a beam has no sparse C and K (an
+  ///         adjustment that changes every mode on its own, eq (27)).
   explicit CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dyn);
 
   int dof() const override { return dyn_->n(); }
@@ -54,6 +57,8 @@ class CoupledImplicitSystem final : public AugmentedSystem, public SecondOrderSy
                       bool force_differences = false);
 
  private:
+  /// The Woodbury data of the low-rank beams after the sparse LU.
+  void factorize_low_rank(double c_q, double c_v);
   /// tau = M_b a + F_b - Q_b at the rigid coordinates given (motion imposed by the caller).
   void rigid_residual(double t, const double* qb, const double* vb, const double* ab, Eigen::VectorXd& tau);
 
@@ -71,6 +76,15 @@ class CoupledImplicitSystem final : public AugmentedSystem, public SecondOrderSy
   ConstraintValues cv_;
   std::vector<NodalForce> nodal_;
   std::vector<bool> is_driven_;
+  // Woodbury (factorize_low_rank): W (n + m x width), Z = B^-1 W, D, and the
+  // LU of I + D W^T Z; one block of columns per low-rank beam.
+  struct LowRankBlock {
+    int beam = 0, row = 0, col = 0;
+  };
+  std::vector<LowRankBlock> low_rank_beams_;
+  Eigen::MatrixXd low_rank_w_, low_rank_z_;
+  Eigen::VectorXd low_rank_d_, low_rank_s_, low_rank_r_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> capacity_lu_;
 };
 
 }  // namespace mbfe::runtime

@@ -76,6 +76,18 @@ std::vector<CoupledBeam> coupled_beams(const BeamModel& beams, bool adjusted) {
     if (!adjusted || !b.has_adjustment) {
       out.back().C = b.system.C;
       out.back().K = b.system.K;
+    } else if (b.adjusted.uniform) {
+      const NodalAdjusted na = low_rank_adjusted(b.system.M, b.basis, b.adjusted);
+      if (na.C.S.size() == 0 && na.K.S.size() == 0) {
+        out.back().C = na.C.s * b.system.M;
+        out.back().K = na.K.s * b.system.M;
+        auto low_rank = std::make_shared<BeamLowRank>();
+        const Eigen::Index m = na.U.cols();
+        low_rank->U = na.U;
+        low_rank->d_C = na.C.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.C.d;
+        low_rank->d_K = na.K.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.K.d;
+        out.back().low_rank = std::move(low_rank);
+      }
     }
     if (b.system.has_time_loads()) {
       auto system = std::make_shared<const BeamSystem>(b.system);

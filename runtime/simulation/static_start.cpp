@@ -4,6 +4,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -22,6 +23,11 @@ constexpr double kRelativeStep = 6e-6;
 constexpr double kStepTolerance = 1e-12;
 // ... or the residual has fallen by 1e-12 from its scale at the start.
 constexpr double kResidualReduction = 1e-12;
+// The sparse Newton of a low-rank adjusted beam stalls higher: its stiffness
+// k* M + U diag(k_L - k*) U^T cancels ~1e6 N/m terms down to the wire's
+// 1 N/m, which leaves updates of ~1e-11 relative. An update below 1e-9
+// relative that no longer halves is that floor.
+constexpr double kStallTolerance = 1e-9;
 // A Jacobian column space thinner than this (relative to its largest singular
 // value) is a mechanism: a direction with no stiffness.
 constexpr double kMechanismRcond = 1e-10;
@@ -198,6 +204,7 @@ bool coupled_static_state_sparse(const ir::Model& model, const std::shared_ptr<C
   dyn->impose_motion(0.0, q, qd);
   const Eigen::VectorXd a = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m), r, c, da, dl;
+  double last_step = std::numeric_limits<double>::infinity();
   for (int it = 0; it < kMaxIterations; ++it) {
     sys->residual(0.0, q, qd, a, lambda, kStiffnessWeight, r, c);
     for (int d : dyn->driven()) r[d] = 0.0;  // driven coordinates stay where the motion puts them
@@ -208,7 +215,10 @@ bool coupled_static_state_sparse(const ir::Model& model, const std::shared_ptr<C
     lambda -= dl;
     dyn->impose_motion(0.0, q, qd);  // the solve's round-off, times the large weight, must not move them
     if (!q.allFinite()) break;
-    if (dq.cwiseAbs().maxCoeff() <= kStepTolerance * (1.0 + q.cwiseAbs().maxCoeff())) return true;
+    const double step = dq.cwiseAbs().maxCoeff(), scale = 1.0 + q.cwiseAbs().maxCoeff();
+    if (step <= kStepTolerance * scale) return true;
+    if (step <= kStallTolerance * scale && step > 0.5 * last_step) return true;
+    last_step = step;
   }
   throw ir::ModelError(model.source_path, model.initial.loc,
                        "static start of model '" + model.name + "': Newton on the sparse tangent did not converge in " +

@@ -169,5 +169,52 @@ TEST(Catenary, SparseStaticStartAgreesWithTheDenseOne) {
   EXPECT_GT(std::abs(q_sparse[1]), 1e-4);  // the head moved: not a trivial state
 }
 
+TEST(Catenary, SparseStaticStartOfAdjustedWiresAgreesWithTheDenseOne) {
+  // Adjusted wires: the sparse tangent has c* M and k* M, their kept modes'
+  // low-rank part enters by Woodbury. The dense Gauss-Newton on the adjusted
+  // dynamics is again the independent path.
+  std::string text = kCatenary;
+  const std::string damping = "damping: {rayleigh: {alpha: 0.0, beta: 1.0e-4}}";
+  for (std::size_t at = text.find(damping); at != std::string::npos; at = text.find(damping, at + 1))
+    text.insert(at + damping.size(), "\n    adjustment: {omega_limit: 2000.0, margin: 0.1}");
+  const Model model = Model::parse(text, "two_span_adjusted.yaml");
+  const runtime::AssembledModel& am = model.assembled();
+  Eigen::VectorXd q_dense, qd_dense, q_sparse, qd_sparse, q_original, qd_original;
+  am.initial_coordinates(q_dense, qd_dense);
+  q_sparse = q_original = q_dense;
+  auto dense = am.make_dynamics(true);
+  runtime::coupled_static_state(model.ir(), *dense, q_dense, qd_dense);
+  ASSERT_TRUE(runtime::coupled_static_state_sparse(model.ir(), am.make_dynamics(true), q_sparse, qd_sparse));
+  ASSERT_TRUE(runtime::coupled_static_state_sparse(model.ir(), am.make_dynamics(false), q_original, qd_original));
+  // The sparse Newton stops at its round-off floor (the low-rank stiffness
+  // cancels k* M terms ~1e6 times the wire's): ~1e-11 m here, like the dense one.
+  constexpr double kSameStateTol = 1e-9;
+  EXPECT_LT((q_dense - q_sparse).cwiseAbs().maxCoeff(), kSameStateTol);
+  // The capped modes are softer than the original ones: a different state,
+  // so the adjusted operators were the ones solved.
+  EXPECT_GT((q_sparse - q_original).cwiseAbs().maxCoeff(), 1e3 * kSameStateTol);
+}
+
+TEST(Catenary, ImplicitIntegratorsRefuseAdjustedWires) {
+  std::string text = kCatenary;
+  const std::string damping = "damping: {rayleigh: {alpha: 0.0, beta: 1.0e-4}}";
+  for (std::size_t at = text.find(damping); at != std::string::npos; at = text.find(damping, at + 1))
+    text.insert(at + damping.size(), "\n    adjustment: {omega_limit: 2000.0, margin: 0.1}");
+  const Model model = Model::parse(text, "two_span_adjusted.yaml");
+  runtime::SimulationRequest r;
+  r.integrator = runtime::parse_integrator("generalized_alpha");
+  r.step = 1e-3;
+  r.t_end = 0.01;
+  r.adjust = true;
+  r.handle_sigint = false;
+  Rows rows;
+  try {
+    model.simulate(r, rows);
+    FAIL() << "generalized_alpha ran the adjusted wires";
+  } catch (const runtime::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("--adjust off"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace mbfe
