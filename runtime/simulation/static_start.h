@@ -49,7 +49,8 @@ void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::V
 /// difference Jacobian above is out of reach): Newton with the sparse
 /// tangent of the implicit integrators (coupled_implicit_system.h), K_t
 /// bordered by the contact rows. Needs the beams' sparse C and K (the original
-/// model); returns false (q untouched) when they are not there.
+/// model, or a cap adjustment's c* M and k* M with its low-rank part); returns
+/// false (q untouched) when they are not there (eq (27) over every mode).
 /// @throws ir::ModelError at `model.initial.loc` when Newton does not converge.
 bool coupled_static_state_sparse(const ir::Model& model, const std::shared_ptr<CoupledDynamics>& dyn,
                                  Eigen::VectorXd& q, Eigen::VectorXd& qd);
