@@ -103,6 +103,7 @@ for key in ("mean", "std", "statistical_max", "statistical_min", "max", "min", "
             continue
         scale = got[kmh]["mean"] if key == "statistical_min" else abs(a)
         d = 100.0 * (b - a) / scale
+        d = 0.0 if abs(d) < 0.005 else d  # no "-0.00 %"
         worst = max(worst, abs(d))
         cells += ["%.2f" % a, "%.2f" % b, "%+.2f %%" % d]
     lines.append("| %s | %s |" % (names[key], " | ".join(cells)))
