@@ -169,15 +169,20 @@ TEST(Catenary, SparseStaticStartAgreesWithTheDenseOne) {
   EXPECT_GT(std::abs(q_sparse[1]), 1e-4);  // the head moved: not a trivial state
 }
 
-TEST(Catenary, SparseStaticStartOfAdjustedWiresAgreesWithTheDenseOne) {
-  // Adjusted wires: the sparse tangent has c* M and k* M, their kept modes'
-  // low-rank part enters by Woodbury. The dense Gauss-Newton on the adjusted
-  // dynamics is again the independent path.
+// The catenary above with both wires adjusted (a cap at 2000 rad/s).
+std::string with_adjusted_wires() {
   std::string text = kCatenary;
   const std::string damping = "damping: {rayleigh: {alpha: 0.0, beta: 1.0e-4}}";
   for (std::size_t at = text.find(damping); at != std::string::npos; at = text.find(damping, at + 1))
     text.insert(at + damping.size(), "\n    adjustment: {omega_limit: 2000.0, margin: 0.1}");
-  const Model model = Model::parse(text, "two_span_adjusted.yaml");
+  return text;
+}
+
+TEST(Catenary, SparseStaticStartOfAdjustedWiresAgreesWithTheDenseOne) {
+  // Adjusted wires: the sparse tangent has c* M and k* M, their kept modes'
+  // low-rank part enters by Woodbury. The dense Gauss-Newton on the adjusted
+  // dynamics is again the independent path.
+  const Model model = Model::parse(with_adjusted_wires(), "two_span_adjusted.yaml");
   const runtime::AssembledModel& am = model.assembled();
   Eigen::VectorXd q_dense, qd_dense, q_sparse, qd_sparse, q_original, qd_original;
   am.initial_coordinates(q_dense, qd_dense);
@@ -196,11 +201,7 @@ TEST(Catenary, SparseStaticStartOfAdjustedWiresAgreesWithTheDenseOne) {
 }
 
 TEST(Catenary, ImplicitIntegratorsRefuseAdjustedWires) {
-  std::string text = kCatenary;
-  const std::string damping = "damping: {rayleigh: {alpha: 0.0, beta: 1.0e-4}}";
-  for (std::size_t at = text.find(damping); at != std::string::npos; at = text.find(damping, at + 1))
-    text.insert(at + damping.size(), "\n    adjustment: {omega_limit: 2000.0, margin: 0.1}");
-  const Model model = Model::parse(text, "two_span_adjusted.yaml");
+  const Model model = Model::parse(with_adjusted_wires(), "two_span_adjusted.yaml");
   runtime::SimulationRequest r;
   r.integrator = runtime::parse_integrator("generalized_alpha");
   r.step = 1e-3;
