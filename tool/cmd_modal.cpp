@@ -14,6 +14,7 @@
 #include "runtime/simulation/invalid_input.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/linearization_notice.h"
 #include "tool/modal_report.h"
 #include "tool/plot_spectrum.h"
 #include "runtime/stability/step_limits.h"
@@ -125,6 +126,9 @@ int cmd_modal(const Args& args) {
   if (coupled) {
     for (const ir::Beam& b : m.beams) coupled_any_adjustment = coupled_any_adjustment || b.adjustment.active();
     const Model model = Model::load(path);
+    const int coordinates = static_cast<int>(m.bodies.size()) + model.assembled().beams().dof;
+    if (coordinates <= runtime::kMaxLinearizedCoordinates)
+      std::cerr << linearization_notice("modal", coordinates, coupled_any_adjustment ? 2 : 1);
     try {
       coupled_original_model = model.spectrum(false);
       if (coupled_any_adjustment) coupled_adjusted_model = model.spectrum(true);

@@ -17,6 +17,7 @@
 #include "api/mbfe.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/linearization_notice.h"
 
 namespace mbfe::tool {
 
@@ -97,8 +98,13 @@ int cmd_stability(const Args& args) {
   const runtime::ModelKind kind = model.kind();
   const bool coupled = kind == runtime::ModelKind::kCoupled;
   const bool rigid = kind == runtime::ModelKind::kRigid;
-  const runtime::ModelSpectrum original_spectrum = model.spectrum(false);
   const bool any_adjustment = model.assembled().has_adjustment();
+  if (coupled) {
+    const int coordinates = static_cast<int>(model.ir().bodies.size()) + model.assembled().beams().dof;
+    if (coordinates <= runtime::kMaxLinearizedCoordinates)
+      std::cerr << linearization_notice("stability", coordinates, any_adjustment ? 2 : 1);
+  }
+  const runtime::ModelSpectrum original_spectrum = model.spectrum(false);
   runtime::ModelSpectrum adjusted_spectrum;
   if (any_adjustment) adjusted_spectrum = model.spectrum(true);
   const runtime::StateSpectrum& original = original_spectrum.limiting;

@@ -67,9 +67,6 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
         return out;
       }
       case ModelKind::kCoupled: {
-        // The linearisation is a dense eigenproblem of twice the coordinates:
-        // hours and gigabytes beyond a few thousand.
-        constexpr int kMaxLinearizedCoordinates = 3000;
         const int n_coupled = static_cast<int>(model.ir().bodies.size()) + model.beams().dof;
         if (n_coupled > kMaxLinearizedCoordinates)
           throw InvalidInput(model.ir().source_path + ": the coupled system has " + std::to_string(n_coupled) +

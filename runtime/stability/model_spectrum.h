@@ -44,6 +44,11 @@ struct ModelSpectrum {
   int growing_at_start = 0;
 };
 
+/// The largest coupled model (coordinates) model_spectrum linearises: its
+/// dense eigenproblem of twice the coordinates takes hours and gigabytes
+/// beyond a few thousand.
+inline constexpr int kMaxLinearizedCoordinates = 3000;
+
 /// The spectrum of `model`, original or with its adjusted beams.
 /// @throws InvalidInput if adjusted beams are asked for and no beam has an
 ///         active adjustment block, or the linearisation fails at the initial
