@@ -16,65 +16,17 @@
 
 #include "api/mbfe.h"
 #include "tests/support/recorded_rows.h"
+#include "tests/support/two_span_catenary.h"
 #include "runtime/simulation/static_start.h"
 
 namespace mbfe {
 namespace {
 
-const std::string kCatenary = R"yaml(model: two_span_check
-gravity: [0, -9.81]
-bodies:
-  - name: carriage
-    parent: ground
-    joint: {type: prismatic, axis: [1, 0], at: [0, 0], motion: "1.0 + 20*t"}
-    mass: 10.0
-    inertia: 0
-  - name: head
-    parent: carriage
-    joint: {type: prismatic, axis: [0, 1], at: [0, 0]}
-    mass: 7.0
-    inertia: 0
-    points: {strip: [0, 0]}
-loads:
-  - {type: spring_damper, joint: head, stiffness: 5000, damping: 50, rest: 0.0}
-  - {type: force, body: head, value: [0, 200.0]}
-beams:
-  - name: messenger
-    origin: [0, 1.2]
-    length: 20.0
-    elements: 40
-    section: {area: 1.2e-4, inertia: 1.0e-9}
-    material: {youngs_modulus: 1.1e11, density: 8900}
-    tension: 16000
-    supports: [{at: 0, type: pinned}, {at: 10, type: pinned}, {at: 20, type: pinned}]
-    damping: {rayleigh: {alpha: 0.0, beta: 1.0e-4}}
-  - name: contact_wire
-    origin: [0, 0]
-    length: 20.0
-    elements: 40
-    section: {area: 1.5e-4, inertia: 1.6e-9}
-    material: {youngs_modulus: 1.2e11, density: 9000}
-    tension: 20000
-    supports:
-      - {at: 0, type: spring, stiffness: 2.0e6, mass: 1.0}
-      - {at: 10, type: spring, stiffness: 2.0e6, mass: 1.0}
-      - {at: 20, type: spring, stiffness: 2.0e6, mass: 1.0}
-    masses: [{at: 2, mass: 0.195}, {at: 5, mass: 0.195}, {at: 8, mass: 0.195}, {at: 12, mass: 0.195}, {at: 15, mass: 0.195}, {at: 18, mass: 0.195}]
-    damping: {rayleigh: {alpha: 0.0, beta: 1.0e-4}}
-links:
-  - {name: d1, a: {beam: contact_wire, at: 2}, b: {beam: messenger, at: 2}, stiffness: 1.0e5, slack: true, hold: -0.002}
-  - {name: d2, a: {beam: contact_wire, at: 5}, b: {beam: messenger, at: 5}, stiffness: 1.0e5, slack: true, hold: -0.003}
-  - {name: d3, a: {beam: contact_wire, at: 8}, b: {beam: messenger, at: 8}, stiffness: 1.0e5, slack: true, hold: -0.002}
-  - {name: d4, a: {beam: contact_wire, at: 12}, b: {beam: messenger, at: 12}, stiffness: 1.0e5, slack: true, hold: -0.002}
-  - {name: d5, a: {beam: contact_wire, at: 15}, b: {beam: messenger, at: 15}, stiffness: 1.0e5, slack: true, hold: -0.003}
-  - {name: d6, a: {beam: contact_wire, at: 18}, b: {beam: messenger, at: 18}, stiffness: 1.0e5, slack: true, hold: -0.002}
-contacts:
-  - {name: strip_contact, type: slider_spring, body: head, point: strip, beam: contact_wire, stiffness: 50000, damping: 0, unilateral: true, side: below}
-initial: {static: true}
-simulation: {integrator: rk4, step: 1.0e-5, t_end: 1.0}
-)yaml";
 
 using Rows = test::RecordedRows;
+
+// Both wires adjusted, each on its own (a cap at 2000 rad/s).
+std::string adjusted_wires() { return test::with_wire_adjustment("{omega_limit: 2000.0, margin: 0.1}"); }
 
 runtime::SimulationReport run(const Model& m, const char* integrator, double h, double t_end, long every, Rows& rows) {
   runtime::SimulationRequest r;
@@ -89,7 +41,7 @@ runtime::SimulationReport run(const Model& m, const char* integrator, double h, 
 TEST(Catenary, FormFindingPutsTheContactWireAtEveryDropperHold) {
   // The profile is the catenary's own: the head starts 1 m before the wire,
   // off it, so that the static start sees the wires and droppers alone.
-  std::string text = kCatenary;
+  std::string text = test::kTwoSpanCatenary;
   const std::string on_wire = "motion: \"1.0 + 20*t\"";
   ASSERT_NE(text.find(on_wire), std::string::npos);
   text.replace(text.find(on_wire), on_wire.size(), "motion: \"-1.0 + 20*t\"");
@@ -117,7 +69,7 @@ TEST(Catenary, FormFindingPutsTheContactWireAtEveryDropperHold) {
 }
 
 TEST(Catenary, ImplicitAndExplicitAgreeThroughACrossingWithSlackDroppers) {
-  const Model model = Model::parse(kCatenary, "two_span.yaml");
+  const Model model = Model::parse(test::kTwoSpanCatenary, "two_span.yaml");
   constexpr double kEnd = 0.9;  // s: the head runs from 1 m to 19 m
   Rows alpha, rk4;
   const runtime::SimulationReport ra = run(model, "generalized_alpha", 2e-4, kEnd, 5, alpha);
@@ -154,7 +106,7 @@ TEST(Catenary, SparseStaticStartAgreesWithTheDenseOne) {
   // the implicit integrators; the dense Gauss-Newton with a difference
   // Jacobian is the independent path, affordable on this small model. The
   // head presses on the wire at t = 0: contact, links and springs all count.
-  const Model model = Model::parse(kCatenary, "two_span.yaml");
+  const Model model = Model::parse(test::kTwoSpanCatenary, "two_span.yaml");
   const runtime::AssembledModel& am = model.assembled();
   Eigen::VectorXd q_dense, qd_dense, q_sparse, qd_sparse;
   am.initial_coordinates(q_dense, qd_dense);
@@ -169,20 +121,12 @@ TEST(Catenary, SparseStaticStartAgreesWithTheDenseOne) {
   EXPECT_GT(std::abs(q_sparse[1]), 1e-4);  // the head moved: not a trivial state
 }
 
-// The catenary above with both wires adjusted (a cap at 2000 rad/s).
-std::string with_adjusted_wires() {
-  std::string text = kCatenary;
-  const std::string damping = "damping: {rayleigh: {alpha: 0.0, beta: 1.0e-4}}";
-  for (std::size_t at = text.find(damping); at != std::string::npos; at = text.find(damping, at + 1))
-    text.insert(at + damping.size(), "\n    adjustment: {omega_limit: 2000.0, margin: 0.1}");
-  return text;
-}
 
 TEST(Catenary, SparseStaticStartOfAdjustedWiresAgreesWithTheDenseOne) {
   // Adjusted wires: the sparse tangent has c* M and k* M, their kept modes'
   // low-rank part enters by Woodbury. The dense Gauss-Newton on the adjusted
   // dynamics is again the independent path.
-  const Model model = Model::parse(with_adjusted_wires(), "two_span_adjusted.yaml");
+  const Model model = Model::parse(adjusted_wires(), "two_span_adjusted.yaml");
   const runtime::AssembledModel& am = model.assembled();
   Eigen::VectorXd q_dense, qd_dense, q_sparse, qd_sparse, q_original, qd_original;
   am.initial_coordinates(q_dense, qd_dense);
@@ -201,7 +145,7 @@ TEST(Catenary, SparseStaticStartOfAdjustedWiresAgreesWithTheDenseOne) {
 }
 
 TEST(Catenary, ImplicitIntegratorsRefuseAdjustedWires) {
-  const Model model = Model::parse(with_adjusted_wires(), "two_span_adjusted.yaml");
+  const Model model = Model::parse(adjusted_wires(), "two_span_adjusted.yaml");
   runtime::SimulationRequest r;
   r.integrator = runtime::parse_integrator("generalized_alpha");
   r.step = 1e-3;
