@@ -22,6 +22,7 @@ void ModelParser::parse(const YAML::Node& root) {
   if (const Field* loads = top.find("loads")) parse_loads(top, *loads);
   if (const Field* contacts = top.find("contacts")) parse_contacts(top, *contacts);
   if (const Field* links = top.find("links")) parse_links(top, *links);
+  check_joined_adjustments(top);
   model_.initial.q.assign(model_.bodies.size(), 0.0);
   model_.initial.qd.assign(model_.bodies.size(), 0.0);
   if (const Field* initial = top.find("initial")) parse_initial(top.sub(*initial));

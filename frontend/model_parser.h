@@ -107,6 +107,8 @@ class ModelParser {
 
   void parse_contacts(const MapView& top, const Field& field);
   void parse_links(const MapView& top, const Field& field);
+  /// Beams joined by links share one adjustment when it has scope 'joined'.
+  void check_joined_adjustments(const MapView& top) const;
   BeamPointRef parse_beam_point(const MapView& link_view, const Field& field) const;
 
   void parse_contact_position(const MapView& view, Contact& contact) const;

@@ -225,7 +225,7 @@ void ModelParser::parse_beam_loads(const MapView& beam_view, const Field& field,
 }
 
 Adjustment ModelParser::parse_adjustment(const MapView& view) {
-  view.allow({"omega_limit", "margin", "zeta_min", "policy"});
+  view.allow({"omega_limit", "margin", "zeta_min", "policy", "scope"});
   Adjustment adjustment;
   adjustment.present = true;
   adjustment.loc = view.loc();
@@ -246,6 +246,15 @@ Adjustment ModelParser::parse_adjustment(const MapView& view) {
         AdjustmentPolicy::kNone};
     adjustment.policy =
         kPolicies[view.choice(*policy, {"cap", "paper_eq25", "keep_slow", "none"})];
+  }
+  if (const Field* scope = view.find("scope")) {
+    adjustment.scope = view.choice(*scope, {"beam", "joined"}) == 0 ? AdjustmentScope::kBeam : AdjustmentScope::kJoined;
+    // The joined structure is adjusted in the low-rank form, which needs one
+    // uniform cap for every changed mode.
+    if (adjustment.scope == AdjustmentScope::kJoined && adjustment.policy != AdjustmentPolicy::kCap) {
+      view.fail(scope->value_loc, view.prefixed("scope 'joined' takes policy 'cap' (the joined structure is "
+                                                "adjusted in the low-rank form, one cap for every changed mode)"));
+    }
   }
   return adjustment;
 }

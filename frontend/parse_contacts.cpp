@@ -116,6 +116,29 @@ void ModelParser::parse_links(const MapView& top, const Field& field) {
   }
 }
 
+void ModelParser::check_joined_adjustments(const MapView& top) const {
+  auto joined = [](const Adjustment& a) { return a.active() && a.scope == AdjustmentScope::kJoined; };
+  for (const Link& link : model_.links) {
+    const Beam& a = model_.beams[link.a.beam];
+    const Beam& b = model_.beams[link.b.beam];
+    if (!joined(a.adjustment) && !joined(b.adjustment)) continue;
+    const Adjustment& x = a.adjustment;
+    const Adjustment& y = b.adjustment;
+    if (joined(x) && joined(y) && x.omega_limit == y.omega_limit && x.margin == y.margin &&
+        x.zeta_min == y.zeta_min)
+      continue;
+    // Point at the block that differs from a joined one, or at the link when
+    // one beam has none.
+    const Beam& odd = joined(x) ? b : a;
+    const Beam& other = joined(x) ? a : b;
+    top.fail(odd.adjustment.present ? odd.adjustment.loc : link.loc,
+             "link " + quoted(link.name) + " joins beam " + quoted(other.name) + ", whose adjustment has scope " +
+                 "'joined', to beam " + quoted(odd.name) +
+                 ": the beams joined by links are one structure with one adjustment; give " + quoted(odd.name) +
+                 " the same block (omega_limit, margin, zeta_min, scope: joined)");
+  }
+}
+
 BeamPointRef ModelParser::parse_beam_point(const MapView& link_view, const Field& field) const {
   const MapView view = link_view.sub(field);
   view.allow({"beam", "at"});

@@ -119,6 +119,11 @@ struct BeamPointMass {
 
 enum class AdjustmentPolicy { kNone, kCap, kPaperEq25, kKeepSlow };
 
+/// What the modes of an adjustment are the modes of: the beam alone, or the
+/// structure of the beams joined to it by links, taut links included
+/// (docs/catenary.md, "The joined structure").
+enum class AdjustmentScope { kBeam, kJoined };
+
 /// Modal adjustment of damping (Section 6 of the paper; docs/damping-adjustment.md).
 struct Adjustment {
   bool present = false;          // the beam has an `adjustment:` block
@@ -126,6 +131,7 @@ struct Adjustment {
   double margin = 0.1;           // the paper's l
   double zeta_min = 0.0;         // damping-ratio floor for oscillatory modes
   AdjustmentPolicy policy = AdjustmentPolicy::kCap;
+  AdjustmentScope scope = AdjustmentScope::kBeam;
   SourceLoc loc;
   /// The block is present and changes something (its policy is not `none`).
   bool active() const { return present && policy != AdjustmentPolicy::kNone; }

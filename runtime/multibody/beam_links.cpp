@@ -25,7 +25,17 @@ void add_point(const BeamMesh& mesh, int offset, double s, double sign, BeamLink
 
 }  // namespace
 
+BeamLinks::Gradient link_gradient(const ir::Link& link, const std::vector<BeamMesh>& meshes,
+                                  const std::vector<int>& offsets) {
+  BeamLinks::Gradient g;
+  add_point(meshes[link.a.beam], offsets[link.a.beam], link.a.at, -1.0, g);
+  add_point(meshes[link.b.beam], offsets[link.b.beam], link.b.at, +1.0, g);
+  return g;
+}
+
 BeamLinks::BeamLinks(const std::vector<ir::Link>& links, const ContactConstraints& constraints) {
+  std::vector<int> offsets;
+  for (int b = 0; b < static_cast<int>(constraints.beams().size()); ++b) offsets.push_back(constraints.beam_offset(b));
   for (const ir::Link& l : links) {
     End e;
     e.name = l.name;
@@ -33,8 +43,7 @@ BeamLinks::BeamLinks(const std::vector<ir::Link>& links, const ContactConstraint
     e.c = l.damping;
     e.rest = l.rest;
     e.slack = l.slack;
-    add_point(constraints.beams()[l.a.beam], constraints.beam_offset(l.a.beam), l.a.at, -1.0, e.g);
-    add_point(constraints.beams()[l.b.beam], constraints.beam_offset(l.b.beam), l.b.at, +1.0, e.g);
+    e.g = link_gradient(l, constraints.beams(), offsets);
     ends_.push_back(e);
   }
   states_.resize(ends_.size());
@@ -55,8 +64,10 @@ void BeamLinks::apply(const double* qc, const double* qcd, Eigen::Ref<Eigen::Vec
     st.slack = e.slack && t <= 0.0;
     if (st.slack) t = 0.0;
     st.tension = t;
-    if (t == 0.0) continue;
-    for (int i = 0; i < e.g.size; ++i) beam_force[e.g.cols[i]] -= t * e.g.values[i];
+    // Inside a joined structure, the force less its linear part (see the header).
+    const double f = e.inside ? t - (e.k * (ext + e.rest) + e.c * rate) : t;
+    if (f == 0.0) continue;
+    for (int i = 0; i < e.g.size; ++i) beam_force[e.g.cols[i]] -= f * e.g.values[i];
   }
 }
 

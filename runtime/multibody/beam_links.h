@@ -8,6 +8,12 @@
 //
 // With g = de/dq (-N_a on a's element, +N_b on b's), f = -T g: the tangent
 // stiffness is k g g^T and the damping c g g^T while the link is taut.
+//
+// A link inside a joined structure (docs/catenary.md, "The joined
+// structure") has its taut, linear part k g g^T q + c g g^T q' in the
+// structure's adjusted K and C already; as a force it adds only what departs
+// from that: + k rest g while taut, + (k e_q + c e') g while slack
+// (e_q = g q, the extension without the rest offset).
 #pragma once
 
 #include <Eigen/Core>
@@ -40,6 +46,9 @@ class BeamLinks {
   bool can_go_slack(int k) const { return ends_[k].slack; }
   double rest(int k) const { return ends_[k].rest; }
   void set_rest(int k, double rest) { ends_[k].rest = rest; }
+  /// Link k's linear part is in a joined structure's K and C (see above).
+  bool inside_structure(int k) const { return ends_[k].inside; }
+  void set_inside_structure(int k, bool inside) { ends_[k].inside = inside; }
 
   /// Adds every link's forces to beam_force (nc entries) at (q_c, q_c').
   void apply(const double* qc, const double* qcd, Eigen::Ref<Eigen::VectorXd> beam_force);
@@ -58,11 +67,17 @@ class BeamLinks {
     std::string name;
     double k = 0.0, c = 0.0, rest = 0.0;
     bool slack = false;
+    bool inside = false;
     Gradient g;  // constant: the ends do not move along their beams
   };
   std::vector<End> ends_;
   std::vector<LinkState> states_;
 };
+
+/// g = de/dq of `link` on the beams `meshes`, whose free DOFs start at
+/// `offsets` in the vector g indexes (q_c, or a joined structure's coordinates).
+BeamLinks::Gradient link_gradient(const ir::Link& link, const std::vector<BeamMesh>& meshes,
+                                  const std::vector<int>& offsets);
 
 /// Slack events and time slack of the links over a run, counted on accepted
 /// steps (like SpringContactTally for contacts).

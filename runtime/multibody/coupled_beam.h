@@ -7,6 +7,7 @@
 #include <Eigen/SparseCore>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "runtime/fem/beam_loads.h"
 #include "runtime/fem/beam_system.h"
@@ -28,6 +29,19 @@ BeamForceFn dense_beam_force(Eigen::MatrixXd C, Eigen::MatrixXd K);
 /// docs/damping-adjustment.md): C q' + K q gains U (d_C .* U^T q' + d_K .* U^T q).
 struct BeamLowRank {
   Eigen::MatrixXd U;         // n x m, M Phi_L (the kept modes)
+  Eigen::VectorXd d_C, d_K;  // m
+};
+
+/// The low-rank part shared by the beams of a joined structure (beams joined
+/// by links, adjusted together; docs/catenary.md): over the stacked
+/// coordinates x of its beams, C x' + K x gains U (d_C .* U^T x' + d_K .* U^T x),
+/// and each member beam's own part is c* M, k* M. The links inside act as
+/// forces only by what departs from their linear part (beam_links.h).
+struct JoinedLowRank {
+  std::vector<int> beams;    // member beams (model order); U's rows stack their free DOFs in this order
+  std::vector<int> links;    // the links inside (model order)
+  Eigen::MatrixXd U;         // n_s x m, M_s Phi_L
+  Eigen::MatrixXd phi;       // n_s x m, Phi_L = M_s^-1 U
   Eigen::VectorXd d_C, d_K;  // m
 };
 

@@ -26,13 +26,15 @@ std::vector<BeamMesh> meshes_of(const std::vector<CoupledBeam>& beams) {
 }  // namespace
 
 CoupledDynamics::CoupledDynamics(const mbfe_model_v1& model, std::vector<CoupledBeam> beams,
-                                 std::vector<BodyInertia> bodies, const std::vector<ir::Link>& links)
+                                 std::vector<BodyInertia> bodies, const std::vector<ir::Link>& links,
+                                 std::vector<std::shared_ptr<const JoinedLowRank>> joined)
     : model_(model),
       beams_(std::move(beams)),
       bodies_(std::move(bodies)),
       cc_(model, meshes_of(beams_)),
       springs_(model, cc_),
       links_(links, cc_),
+      joined_(std::move(joined)),
       nb_(model.num_coordinates),
       nc_(cc_.num_beam_dofs()) {
   if (model.abi_version != MBFE_MODEL_ABI_VERSION) {
@@ -55,6 +57,28 @@ CoupledDynamics::CoupledDynamics(const mbfe_model_v1& model, std::vector<Coupled
                                "matrix without rotary inertia cannot carry a contact)");
     }
     mc_factor_.push_back(std::move(f));
+  }
+  for (const auto& s : joined_) {
+    Eigen::Index rows = 0;
+    for (int b : s->beams) {
+      if (b < 0 || b >= static_cast<int>(beams_.size()))
+        throw std::invalid_argument("joined structure: beam index " + std::to_string(b) + " out of range");
+      rows += beams_[b].mesh.num_free;
+    }
+    const Eigen::Index m = s->U.cols();
+    if (s->U.rows() != rows || s->phi.rows() != rows || s->phi.cols() != m || s->d_C.size() != m ||
+        s->d_K.size() != m) {
+      std::ostringstream os;
+      os << "joined structure: U is " << s->U.rows() << " x " << m << ", phi " << s->phi.rows() << " x "
+         << s->phi.cols() << ", d_C and d_K " << s->d_C.size() << " and " << s->d_K.size() << "; its beams have "
+         << rows << " free DOFs";
+      throw std::invalid_argument(os.str());
+    }
+    for (int l : s->links) {
+      if (l < 0 || l >= links_.count())
+        throw std::invalid_argument("joined structure: link index " + std::to_string(l) + " out of range");
+      links_.set_inside_structure(l, true);
+    }
   }
   for (int i = 0; i < model.num_driven; ++i) driven_.push_back(model.driven_coordinates[i]);
   if (!driven_.empty() && cc_.num_rows() > 0) {
@@ -163,6 +187,31 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
     rck = beams_[k].P - rck;
     if (extra) rck += fk;
     ac0_.segment(off - nb_, nk) = mc_factor_[k]->solve(rck);
+  }
+  // Joined structures: M_s^-1 U = Phi_L, so their low-rank part enters the
+  // accelerations without a solve.
+  for (const auto& s : joined_) {
+    const Eigen::Index ns = s->U.rows();
+    joined_x_.resize(ns);
+    joined_v_.resize(ns);
+    Eigen::Index row = 0;
+    for (int b : s->beams) {
+      const int off = nb_ + cc_.beam_offset(b);
+      const int nk = beams_[b].mesh.num_free;
+      joined_x_.segment(row, nk) = q.segment(off, nk);
+      joined_v_.segment(row, nk) = qd.segment(off, nk);
+      row += nk;
+    }
+    joined_r_.noalias() = s->U.transpose() * joined_v_;
+    joined_rk_.noalias() = s->U.transpose() * joined_x_;
+    joined_r_ = s->d_C.cwiseProduct(joined_r_) + s->d_K.cwiseProduct(joined_rk_);
+    row = 0;
+    for (int b : s->beams) {
+      const int off = cc_.beam_offset(b);
+      const int nk = beams_[b].mesh.num_free;
+      ac0_.segment(off, nk).noalias() -= s->phi.middleRows(row, nk) * joined_r_;
+      row += nk;
+    }
   }
   // W = M_c^-1 J_c^T column by column (each row of J_c lives on one beam, on
   // at most 4 of its DOFs): a combination of the cached columns M_c^-1 e_k.

@@ -42,10 +42,13 @@ struct ContactReport {
 /// scratch lives in members (one object per simulating thread).
 class CoupledDynamics {
  public:
-  /// @throws std::invalid_argument for inconsistent beams / contacts,
-  ///         std::runtime_error if a beam mass matrix is not positive definite.
+  /// `joined`: the low-rank parts of joined structures (coupled_beam.h); their
+  /// member beams carry only their own part, their links are marked inside.
+  /// @throws std::invalid_argument for inconsistent beams / contacts / joined
+  ///         structures, std::runtime_error if a beam mass matrix is not positive definite.
   CoupledDynamics(const mbfe_model_v1& model, std::vector<CoupledBeam> beams,
-                  std::vector<BodyInertia> bodies = {}, const std::vector<ir::Link>& links = {});
+                  std::vector<BodyInertia> bodies = {}, const std::vector<ir::Link>& links = {},
+                  std::vector<std::shared_ptr<const JoinedLowRank>> joined = {});
 
   int nb() const { return nb_; }
   int nc() const { return nc_; }
@@ -54,6 +57,7 @@ class CoupledDynamics {
   const ContactConstraints& constraints() const { return cc_; }
   const mbfe_model_v1& model() const { return model_; }
   const std::vector<CoupledBeam>& beams() const { return beams_; }
+  const std::vector<std::shared_ptr<const JoinedLowRank>>& joined() const { return joined_; }
 
   /// Evaluates M_b, Q_b - F_b, P_c - f_c, the constraints with gamma, and the
   /// beam-side products a_c0 = M_c^-1 r_c, W = M_c^-1 J_c^T, H = J_c W.
@@ -98,6 +102,7 @@ class CoupledDynamics {
   ContactConstraints cc_;
   ContactSprings springs_;
   BeamLinks links_;
+  std::vector<std::shared_ptr<const JoinedLowRank>> joined_;
   int nb_, nc_;
   std::vector<int> driven_;
   // Driven joints at the last evaluate(): the motion, and the rows of M and of
@@ -114,6 +119,7 @@ class CoupledDynamics {
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> mb_row_;
   Eigen::MatrixXd mb_;
   Eigen::VectorXd fb_, qb_force_, rb_, rc_, ac0_, gc_, tmp_;
+  Eigen::VectorXd joined_x_, joined_v_, joined_r_, joined_rk_;  // a joined structure's stacked q, q', modal forces
   Eigen::MatrixXd w_, h_;
   ConstraintValues cv_;
   // Workspace of solve_partitioned (sized on first use, no allocation after).

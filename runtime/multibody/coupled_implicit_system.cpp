@@ -93,6 +93,19 @@ void CoupledImplicitSystem::residual(double t, const Eigen::VectorXd& q, const E
       for (const NodalForce& f : nodal_) rk[f.index] -= f.value;
     }
   }
+  // Joined structures: U (d_C .* U^T v + d_K .* U^T q) over their stacked beams.
+  for (const auto& js : dyn_->joined()) {
+    stack_joined(*js, v, joined_v_);
+    stack_joined(*js, q, joined_x_);
+    low_rank_r_.noalias() = js->d_C.cwiseProduct(js->U.transpose() * joined_v_);
+    low_rank_r_.noalias() += js->d_K.cwiseProduct(js->U.transpose() * joined_x_);
+    Eigen::Index row = 0;
+    for (int b : js->beams) {
+      const int nk = beams[b].mesh.num_free;
+      rc.segment(cc.beam_offset(b), nk).noalias() += js->U.middleRows(row, nk) * low_rank_r_;
+      row += nk;
+    }
+  }
   // Contacts: + G^T lambda, and the scaled constraint rows.
   c.resize(m);
   if (m > 0) {
@@ -208,12 +221,15 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
     }
   }
   if (links_.count() > 0) {
-    // Taut links: k g g^T and c g g^T on the beam DOFs they join.
+    // Taut links: k g g^T and c g g^T on the beam DOFs they join. A link
+    // inside a joined structure has these in the structure while taut and
+    // takes them away while slack.
     links_.apply(q.data() + nb, v.data() + nb, fc_);
     for (int k = 0; k < links_.count(); ++k) {
-      if (links_.states()[k].slack) continue;
+      const bool slack = links_.states()[k].slack;
+      if (slack != links_.inside_structure(k)) continue;
       const BeamLinks::Gradient& g = links_.gradient(k);
-      const double w = c_q * links_.stiffness(k) + c_v * links_.damping(k);
+      const double w = (slack ? -1.0 : 1.0) * (c_q * links_.stiffness(k) + c_v * links_.damping(k));
       for (int i = 0; i < g.size; ++i)
         for (int j = 0; j < g.size; ++j) add(nb + g.cols[i], nb + g.cols[j], w * g.values[i] * g.values[j]);
     }
@@ -295,6 +311,9 @@ void CoupledImplicitSystem::factorize_low_rank(double c_q, double c_v) {
     low_rank_beams_.push_back({static_cast<int>(k), nb + cc.beam_offset(static_cast<int>(k)), width});
     width += static_cast<int>(beams[k].low_rank->U.cols());
   }
+  // A joined structure's block of columns has rows on each of its beams.
+  const int joined_col = width;
+  for (const auto& js : dyn_->joined()) width += static_cast<int>(js->U.cols());
   if (width == 0) return;
   Eigen::MatrixXd W = Eigen::MatrixXd::Zero(n + m, width);
   low_rank_d_.resize(width);
@@ -302,6 +321,18 @@ void CoupledImplicitSystem::factorize_low_rank(double c_q, double c_v) {
     const BeamLowRank& lr = *beams[blk.beam].low_rank;
     W.block(blk.row, blk.col, lr.U.rows(), lr.U.cols()) = lr.U;
     low_rank_d_.segment(blk.col, lr.U.cols()) = c_v * lr.d_C + c_q * lr.d_K;
+  }
+  int col = joined_col;
+  for (const auto& js : dyn_->joined()) {
+    const Eigen::Index mj = js->U.cols();
+    Eigen::Index row = 0;
+    for (int b : js->beams) {
+      const int nk = beams[b].mesh.num_free;
+      W.block(nb + cc.beam_offset(b), col, nk, mj) = js->U.middleRows(row, nk);
+      row += nk;
+    }
+    low_rank_d_.segment(col, mj) = c_v * js->d_C + c_q * js->d_K;
+    col += static_cast<int>(mj);
   }
   low_rank_z_ = lu_.solve(W);
   Eigen::MatrixXd capacity = low_rank_d_.asDiagonal() * (W.transpose() * low_rank_z_);
@@ -324,6 +355,17 @@ void CoupledImplicitSystem::solve(const Eigen::VectorXd& r, const Eigen::VectorX
   }
   da = sol_.head(n);
   dlambda = sol_.tail(m);
+}
+
+void CoupledImplicitSystem::stack_joined(const JoinedLowRank& js, const Eigen::VectorXd& y, Eigen::VectorXd& out) const {
+  const int nb = dyn_->nb();
+  out.resize(js.U.rows());
+  Eigen::Index row = 0;
+  for (int b : js.beams) {
+    const int nk = dyn_->beams()[b].mesh.num_free;
+    out.segment(row, nk) = y.segment(nb + dyn_->constraints().beam_offset(b), nk);
+    row += nk;
+  }
 }
 
 void CoupledImplicitSystem::accelerations(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,

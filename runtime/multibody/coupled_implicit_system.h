@@ -13,7 +13,8 @@
 // term k g g^T (c g g^T for its damper), and the contact rows G = [J_b J_c] bordering it;
 // the whole is one sparse LU. A low-rank adjusted beam (C = c* M + U diag(d_C) U^T,
 // likewise K) puts its sparse part there and its low-rank part into a
-// Woodbury correction of the solves.
+// Woodbury correction of the solves; so does a joined structure, whose
+// low-rank part spans its beams (coupled_beam.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -59,6 +60,8 @@ class CoupledImplicitSystem final : public AugmentedSystem, public SecondOrderSy
  private:
   /// The Woodbury data of the low-rank beams after the sparse LU.
   void factorize_low_rank(double c_q, double c_v);
+  /// The entries of y ([q_b; q_c], or rates) on a joined structure's beams, stacked.
+  void stack_joined(const JoinedLowRank& js, const Eigen::VectorXd& y, Eigen::VectorXd& out) const;
   /// tau = M_b a + F_b - Q_b at the rigid coordinates given (motion imposed by the caller).
   void rigid_residual(double t, const double* qb, const double* vb, const double* ab, Eigen::VectorXd& tau);
 
@@ -84,6 +87,7 @@ class CoupledImplicitSystem final : public AugmentedSystem, public SecondOrderSy
   std::vector<LowRankBlock> low_rank_beams_;
   Eigen::MatrixXd low_rank_w_, low_rank_z_;
   Eigen::VectorXd low_rank_d_, low_rank_s_, low_rank_r_;
+  Eigen::VectorXd joined_x_, joined_v_;
   Eigen::PartialPivLU<Eigen::MatrixXd> capacity_lu_;
 };
 

@@ -38,16 +38,39 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   } catch (const std::invalid_argument& e) {
     throw InvalidInput(model_.source_path + ": " + e.what());
   }
+  // Beams joined by links and adjusted together (scope 'joined'): a coupled
+  // model's structures, built when every mode of each is within reach.
+  bool any_joined = false;
+  for (const ir::Beam& b : model_.beams)
+    any_joined = any_joined || (b.adjustment.active() && b.adjustment.scope == ir::AdjustmentScope::kJoined);
+  if (any_joined && kind_ == ModelKind::kCoupled) {
+    try {
+      joined_ = joined_structures(model_, beams_, options.dense_limit);
+    } catch (const std::invalid_argument& e) {
+      // Said at the first joined beam's adjustment block.
+      for (const ir::Beam& b : model_.beams)
+        if (b.adjustment.active() && b.adjustment.scope == ir::AdjustmentScope::kJoined) {
+          adjustment_unavailable_ = e.what();
+          adjustment_unavailable_at_ = b.adjustment.loc;
+          break;
+        }
+    }
+  }
   for (const BeamPart& part : beams_.beams) {
     // The low-rank adjusted operators keep the computed modes and cap the
     // rest uniformly: right only if every mode left out is one the cap changes.
+    // (A joined structure's members are adjusted as the structure, above.)
+    const ir::Beam& b = model_.beams[&part - beams_.beams.data()];
+    if (b.adjustment.scope == ir::AdjustmentScope::kJoined) continue;
     if (part.has_adjustment && !part.basis.complete &&
-        !(part.adjusted.adjusted > 0 && part.adjusted.change.back() == ModeChange::kAdjusted && part.adjusted.uniform))
+        !(part.adjusted.adjusted > 0 && part.adjusted.change.back() == ModeChange::kAdjusted && part.adjusted.uniform)) {
+      adjustment_unavailable_at_ = b.adjustment.loc;
       adjustment_unavailable_ = "beam '" + part.system.name + "' has " + std::to_string(part.system.M.rows()) +
                                 " DOFs, beyond the dense modal analysis (" + std::to_string(options.dense_limit) +
                                 "), and its " + std::to_string(part.basis.omega.size()) +
                                 " lowest modes do not reach its adjustment's limit: the adjusted operators need every mode "
                                 "the cap keeps; run the original model (--adjust off), e.g. with generalized_alpha";
+    }
   }
   if (!model_.links.empty()) {
     if (kind_ != ModelKind::kCoupled)
@@ -57,13 +80,16 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   }
   if (kind_ == ModelKind::kCoupled) {
     original_beams_ = coupled_beams(beams_, false);
-    if (beams_.any_adjustment && adjustment_unavailable_.empty()) adjusted_beams_ = coupled_beams(beams_, true);
+    if (beams_.any_adjustment && adjustment_unavailable_.empty())
+      adjusted_beams_ = coupled_beams(beams_, true, joined_);
   }
 }
 
 bool AssembledModel::resolve_adjusted(std::optional<bool> asked) const {
   const bool adjusted = asked.value_or(beams_.any_adjustment);
-  if (adjusted && !adjustment_unavailable_.empty()) throw InvalidInput(model_.source_path + ": " + adjustment_unavailable_);
+  if (adjusted && !adjustment_unavailable_.empty())
+    throw InvalidInput(model_.source_path + ":" + std::to_string(adjustment_unavailable_at_.line) + ":" +
+                       std::to_string(adjustment_unavailable_at_.column) + ": " + adjustment_unavailable_);
   if (adjusted && !beams_.any_adjustment)
     throw InvalidInput("--adjust on: no beam of '" + model_.name +
                        "' has an `adjustment:` block (e.g. adjustment: {omega_limit: 1.0e5, margin: 0.1})");
@@ -74,8 +100,11 @@ std::shared_ptr<CoupledDynamics> AssembledModel::make_dynamics(bool adjusted) co
   if (kind_ != ModelKind::kCoupled)
     throw InvalidInput("model '" + model_.name + "' is not a coupled model (bodies and beams)");
   resolve_adjusted(adjusted);  // no adjusted beams without an adjustment block
-  auto dynamics =
-      std::make_shared<CoupledDynamics>(*kernels_, adjusted ? adjusted_beams_ : original_beams_, bodies_, model_.links);
+  std::vector<std::shared_ptr<const JoinedLowRank>> joined;
+  if (adjusted)
+    for (const JoinedStructure& s : joined_) joined.push_back(s.low_rank);
+  auto dynamics = std::make_shared<CoupledDynamics>(*kernels_, adjusted ? adjusted_beams_ : original_beams_, bodies_,
+                                                    model_.links, std::move(joined));
   for (std::size_t k = 0; k < links_.rest.size(); ++k) dynamics->links().set_rest(static_cast<int>(k), links_.rest[k]);
   return dynamics;
 }

@@ -17,6 +17,7 @@
 #include "runtime/damping/beam_model.h"
 #include "runtime/multibody/coupled_dynamics.h"
 #include "runtime/multibody/rigid_system.h"
+#include "runtime/simulation/joined_structures.h"
 #include "runtime/simulation/link_form_finding.h"
 
 namespace mbfe::runtime {
@@ -67,6 +68,10 @@ class AssembledModel {
   /// static equilibrium of the beams and links alone (docs/catenary.md).
   const LinkFormFinding& links() const { return links_; }
 
+  /// The joined structures of a coupled model (beams adjusted together,
+  /// runtime/simulation/joined_structures.h); empty without scope 'joined'.
+  const std::vector<JoinedStructure>& joined() const { return joined_; }
+
  private:
   ir::Model model_;
   const mbfe_model_v1* kernels_ = nullptr;
@@ -77,9 +82,11 @@ class AssembledModel {
   // scratch; each make_dynamics() copies them).
   std::vector<CoupledBeam> original_beams_, adjusted_beams_;
   LinkFormFinding links_;
+  std::vector<JoinedStructure> joined_;
   // Why the adjusted beams cannot be built (a large beam whose lowest modes
   // do not reach its cap); empty when they can.
   std::string adjustment_unavailable_;
+  ir::SourceLoc adjustment_unavailable_at_;  // the adjustment block it concerns
   // Modes computed of a coupled model's beam beyond the dense modal path.
   static constexpr int kLargeBeamModes = 40;
 };

@@ -1,5 +1,7 @@
 #include "runtime/simulation/coupled_beams.h"
 
+#include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <memory>
 
 #include "runtime/damping/low_rank_kernel.h"
@@ -69,24 +71,54 @@ BeamForceFn beam_acceleration(const BeamPart& beam, bool adjusted) {
   };
 }
 
-std::vector<CoupledBeam> coupled_beams(const BeamModel& beams, bool adjusted) {
+namespace {
+
+/// A joined structure's member: c* M q' + k* M q, and its free acceleration
+/// M^-1 P - c* q' - k* q without a solve.
+CoupledBeam joined_member(const BeamSystem& sys, double c_star, double k_star) {
+  Eigen::SparseMatrix<double> C = c_star * sys.M, K = k_star * sys.M;
+  CoupledBeam out = coupled_beam(sys, sparse_beam_force(C, K));
+  out.C = std::move(C);
+  out.K = std::move(K);
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(sys.M);
+  if (ldlt.info() != Eigen::Success) return out;  // CoupledDynamics reports the mass matrix
+  const Eigen::VectorXd minv_p = ldlt.solve(sys.P);
+  out.acceleration = [minv_p, c_star, k_star](const Eigen::Ref<const Eigen::VectorXd>& q,
+                                              const Eigen::Ref<const Eigen::VectorXd>& qd,
+                                              Eigen::Ref<Eigen::VectorXd> a) { a = minv_p - c_star * qd - k_star * q; };
+  return out;
+}
+
+}  // namespace
+
+std::vector<CoupledBeam> coupled_beams(const BeamModel& beams, bool adjusted,
+                                       const std::vector<JoinedStructure>& joined) {
   std::vector<CoupledBeam> out;
-  for (const BeamPart& b : beams.beams) {
-    out.push_back(coupled_beam(b.system, beam_force(b, adjusted)));
-    if (!adjusted || !b.has_adjustment) {
-      out.back().C = b.system.C;
-      out.back().K = b.system.K;
-    } else if (b.adjusted.uniform) {
-      const NodalAdjusted na = low_rank_adjusted(b.system.M, b.basis, b.adjusted);
-      if (na.C.S.size() == 0 && na.K.S.size() == 0) {
-        out.back().C = na.C.s * b.system.M;
-        out.back().K = na.K.s * b.system.M;
-        auto low_rank = std::make_shared<BeamLowRank>();
-        const Eigen::Index m = na.U.cols();
-        low_rank->U = na.U;
-        low_rank->d_C = na.C.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.C.d;
-        low_rank->d_K = na.K.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.K.d;
-        out.back().low_rank = std::move(low_rank);
+  for (std::size_t k = 0; k < beams.beams.size(); ++k) {
+    const BeamPart& b = beams.beams[k];
+    const JoinedStructure* structure = nullptr;
+    for (const JoinedStructure& s : joined)
+      if (std::find(s.beams.begin(), s.beams.end(), static_cast<int>(k)) != s.beams.end()) structure = &s;
+    if (adjusted && structure) {
+      out.push_back(joined_member(b.system, structure->c_star, structure->k_star));
+    } else {
+      out.push_back(coupled_beam(b.system, beam_force(b, adjusted)));
+      out.back().acceleration = beam_acceleration(b, adjusted);
+      if (!adjusted || !b.has_adjustment) {
+        out.back().C = b.system.C;
+        out.back().K = b.system.K;
+      } else if (b.adjusted.uniform) {
+        const NodalAdjusted na = low_rank_adjusted(b.system.M, b.basis, b.adjusted);
+        if (na.C.S.size() == 0 && na.K.S.size() == 0) {
+          out.back().C = na.C.s * b.system.M;
+          out.back().K = na.K.s * b.system.M;
+          auto low_rank = std::make_shared<BeamLowRank>();
+          const Eigen::Index m = na.U.cols();
+          low_rank->U = na.U;
+          low_rank->d_C = na.C.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.C.d;
+          low_rank->d_K = na.K.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.K.d;
+          out.back().low_rank = std::move(low_rank);
+        }
       }
     }
     if (b.system.has_time_loads()) {
@@ -95,7 +127,6 @@ std::vector<CoupledBeam> coupled_beams(const BeamModel& beams, bool adjusted) {
         time_dependent_loads(*system, t, forces);
       };
     }
-    out.back().acceleration = beam_acceleration(b, adjusted);
   }
   return out;
 }

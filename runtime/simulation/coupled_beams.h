@@ -5,6 +5,7 @@
 
 #include "runtime/damping/beam_model.h"
 #include "runtime/multibody/coupled_beam.h"
+#include "runtime/simulation/joined_structures.h"
 
 namespace mbfe::runtime {
 
@@ -19,7 +20,10 @@ BeamForceFn beam_force(const BeamPart& beam, bool adjusted);
 /// then solves with M).
 BeamForceFn beam_acceleration(const BeamPart& beam, bool adjusted);
 
-/// Every beam of `beams` as a CoupledBeam, original or adjusted.
-std::vector<CoupledBeam> coupled_beams(const BeamModel& beams, bool adjusted);
+/// Every beam of `beams` as a CoupledBeam, original or adjusted. An adjusted
+/// member of a joined structure carries its own part only (C = c* M,
+/// K = k* M; the structure's low-rank part is CoupledDynamics').
+std::vector<CoupledBeam> coupled_beams(const BeamModel& beams, bool adjusted,
+                                       const std::vector<JoinedStructure>& joined = {});
 
 }  // namespace mbfe::runtime

@@ -237,6 +237,10 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   SimulationReport report;
   report.variant = std::string(adjusted ? "adjusted" : "original") + " damping, " +
                    (index3 ? "index-3" : augmented ? "augmented" : "partitioned") + " formulation";
+  if (adjusted)
+    for (const JoinedStructure& s : model.joined())
+      report.variant += ", joined structure " + joined_name(model.ir(), s.beams) + " (" +
+                        std::to_string(s.dof - s.adjusted.adjusted) + " of " + std::to_string(s.dof) + " modes kept)";
   std::string row_fault;
   try {
     report.run = run_simulation(*system, request.integrator, y0, options, [&](double t, const Eigen::VectorXd& y) {

@@ -208,7 +208,8 @@ bool coupled_static_state_sparse(const ir::Model& model, const std::shared_ptr<C
   const Eigen::VectorXd a = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m), r, c, da, dl;
   double last_step = std::numeric_limits<double>::infinity(), first_residual = -1.0;
-  const bool low_rank = std::any_of(dyn->beams().begin(), dyn->beams().end(),
+  const bool low_rank = !dyn->joined().empty() ||
+                        std::any_of(dyn->beams().begin(), dyn->beams().end(),
                                     [](const CoupledBeam& b) { return static_cast<bool>(b.low_rank); });
   for (int it = 0; it < kMaxIterations; ++it) {
     sys->residual(0.0, q, qd, a, lambda, kStiffnessWeight, r, c);

@@ -1,0 +1,178 @@
+#include "runtime/simulation/joined_structures.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "runtime/modal/modal_analysis.h"
+#include "runtime/multibody/beam_links.h"
+
+namespace mbfe::runtime {
+
+namespace {
+
+bool joined_scope(const ir::Beam& b) {
+  return b.adjustment.active() && b.adjustment.scope == ir::AdjustmentScope::kJoined;
+}
+
+int root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+void add_block(const Eigen::SparseMatrix<double>& A, int offset, double scale,
+               std::vector<Eigen::Triplet<double>>& out) {
+  for (int col = 0; col < A.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, col); it; ++it)
+      out.emplace_back(offset + static_cast<int>(it.row()), offset + static_cast<int>(it.col()), scale * it.value());
+}
+
+// The slack links inside a structure act as forces that take away their
+// exact linear part k g g^T from the adjusted K. With the slack links in a
+// set S slack, K_adj - sum_S k g g^T is positive definite exactly when the
+// eigenvalues of [sqrt(k_a k_b) g_a^T K_adj^-1 g_b] over S lie below 1, and
+// every subset's lie below the whole set's largest (interlacing): that one
+// number decides for every combination. K^-1 = Phi diag(1 / k_j) Phi^T.
+double slack_stiffness_ratio(const ir::Model& model, const JoinedStructure& s, const std::vector<BeamMesh>& meshes,
+                             const std::vector<int>& offsets, bool adjusted) {
+  std::vector<int> slack;
+  for (int l : s.links)
+    if (model.links[l].slack) slack.push_back(l);
+  if (slack.empty()) return 0.0;
+  const int ns = static_cast<int>(slack.size());
+  Eigen::MatrixXd pg = Eigen::MatrixXd::Zero(s.dof, ns);  // Phi^T g sqrt(k) / sqrt(k_j)
+  for (int a = 0; a < ns; ++a) {
+    const ir::Link& link = model.links[slack[a]];
+    const BeamLinks::Gradient g = link_gradient(link, meshes, offsets);
+    for (int i = 0; i < g.size; ++i) pg.col(a) += g.values[i] * s.basis.phi.row(g.cols[i]).transpose();
+    pg.col(a) *= std::sqrt(link.stiffness);
+  }
+  for (int j = 0; j < s.dof; ++j)
+    pg.row(j) /= std::sqrt(adjusted ? s.adjusted.modes[j].k : s.original[j].k);
+  const Eigen::MatrixXd ratio = pg.transpose() * pg;
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(ratio, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+}
+
+JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vector<int> members,
+                        int dense_limit) {
+  JoinedStructure s;
+  s.beams = std::move(members);
+  std::vector<int> offsets(beams.beams.size(), 0);
+  std::vector<BeamMesh> meshes;
+  for (const BeamPart& b : beams.beams) meshes.push_back(beam_mesh(b.system));
+  for (int b : s.beams) {
+    offsets[b] = s.dof;
+    s.dof += static_cast<int>(beams.beams[b].system.M.rows());
+  }
+  const std::string name = joined_name(model, s.beams);
+  if (s.dof > dense_limit)
+    throw std::invalid_argument("the joined structure " + name + " has " + std::to_string(s.dof) +
+                                " DOFs, beyond the dense modal analysis (" + std::to_string(dense_limit) +
+                                "): its adjustment needs every mode; use scope 'beam', or run the original "
+                                "model (--adjust off)");
+  const auto member = [&](int b) { return std::find(s.beams.begin(), s.beams.end(), b) != s.beams.end(); };
+  std::vector<Eigen::Triplet<double>> tm, tk, tc;
+  for (int b : s.beams) {
+    const BeamSystem& sys = beams.beams[b].system;
+    add_block(sys.M, offsets[b], 1.0, tm);
+    add_block(sys.K, offsets[b], 1.0, tk);
+    add_block(sys.C, offsets[b], 1.0, tc);
+  }
+  // The links inside, taut: k g g^T and c g g^T.
+  for (int l = 0; l < static_cast<int>(model.links.size()); ++l) {
+    const ir::Link& link = model.links[l];
+    if (!member(link.a.beam) || !member(link.b.beam)) continue;
+    s.links.push_back(l);
+    const BeamLinks::Gradient g = link_gradient(link, meshes, offsets);
+    for (int i = 0; i < g.size; ++i)
+      for (int j = 0; j < g.size; ++j) {
+        tk.emplace_back(g.cols[i], g.cols[j], link.stiffness * g.values[i] * g.values[j]);
+        if (link.damping > 0.0) tc.emplace_back(g.cols[i], g.cols[j], link.damping * g.values[i] * g.values[j]);
+      }
+  }
+  Eigen::SparseMatrix<double> M(s.dof, s.dof), K(s.dof, s.dof), C(s.dof, s.dof);
+  M.setFromTriplets(tm.begin(), tm.end());
+  K.setFromTriplets(tk.begin(), tk.end());
+  C.setFromTriplets(tc.begin(), tc.end());
+  s.basis = modal_dense(M, K);
+  // Modal damping: the diagonal of Phi^T C_s Phi. The beams' Rayleigh C is
+  // not alpha M_s + beta K_s once links join them (beta k g g^T is missing),
+  // so Phi^T C_s Phi has small off-diagonal entries; the modal form drops
+  // them (docs/catenary.md measures what that costs).
+  const Eigen::MatrixXd c_phi = C * s.basis.phi;
+  s.original.resize(s.dof);
+  for (int j = 0; j < s.dof; ++j) {
+    const double w = s.basis.omega[j];
+    s.original[j] = {w, s.basis.phi.col(j).dot(c_phi.col(j)), w * w};
+  }
+  const ir::Adjustment& adjustment = model.beams[s.beams.front()].adjustment;
+  try {
+    s.adjusted = adjust_modes(s.original, adjustment);
+    const NodalAdjusted na = low_rank_adjusted(M, s.basis, s.adjusted);
+    if (na.C.S.size() > 0 || na.K.S.size() > 0)
+      throw std::invalid_argument("the adjusted operators have a sparse part beyond c* M and k* M");
+    s.slack_stiffness_ratio = slack_stiffness_ratio(model, s, meshes, offsets, true);
+    if (!(s.slack_stiffness_ratio < 1.0)) {
+      std::ostringstream os;
+      os << "with its slack links slack, the adjusted structure would have no stiffness left where they act: "
+            "the largest eigenvalue of k g^T K_adj^-1 g over them is "
+         << s.slack_stiffness_ratio << " (it must be below 1; the original structure's is "
+         << slack_stiffness_ratio(model, s, meshes, offsets, false)
+         << "). The cap softens the modes that carry the links' own stiffness, and a slack link takes all of it "
+            "away (docs/catenary.md, \"The joined structure\"). Give the beams scope 'beam' (the links then act "
+            "as exact forces), or raise omega_limit";
+      throw std::invalid_argument(os.str());
+    }
+    s.k_star = na.K.s;
+    s.c_star = na.C.s;
+    auto low_rank = std::make_shared<JoinedLowRank>();
+    low_rank->beams = s.beams;
+    low_rank->links = s.links;
+    const Eigen::Index m = na.U.cols();
+    low_rank->U = na.U;
+    low_rank->phi = na.phi;
+    low_rank->d_C = na.C.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.C.d;
+    low_rank->d_K = na.K.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.K.d;
+    s.low_rank = std::move(low_rank);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("the joined structure " + name + ": " + e.what());
+  }
+  return s;
+}
+
+}  // namespace
+
+std::vector<JoinedStructure> joined_structures(const ir::Model& model, const BeamModel& beams, int dense_limit) {
+  const int nbeams = static_cast<int>(model.beams.size());
+  std::vector<int> parent(nbeams);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const ir::Link& link : model.links) {
+    if (joined_scope(model.beams[link.a.beam]) && joined_scope(model.beams[link.b.beam]))
+      parent[root(parent, link.b.beam)] = root(parent, link.a.beam);
+  }
+  std::vector<JoinedStructure> out;
+  std::vector<bool> done(nbeams, false);
+  for (int b = 0; b < nbeams; ++b) {
+    if (done[b] || !joined_scope(model.beams[b])) continue;
+    std::vector<int> members;
+    for (int c = b; c < nbeams; ++c)
+      if (joined_scope(model.beams[c]) && root(parent, c) == root(parent, b)) {
+        members.push_back(c);
+        done[c] = true;
+      }
+    out.push_back(analyse(model, beams, std::move(members), dense_limit));
+  }
+  return out;
+}
+
+std::string joined_name(const ir::Model& model, const std::vector<int>& beams) {
+  std::string name;
+  for (int b : beams) name += (name.empty() ? "" : "+") + model.beams[b].name;
+  return "'" + name + "'";
+}
+
+}  // namespace mbfe::runtime
