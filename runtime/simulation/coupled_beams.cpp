@@ -8,12 +8,18 @@
 
 namespace mbfe::runtime {
 
-BeamForceFn beam_force(const BeamPart& beam, bool adjusted) {
+namespace {
+
+/// The beam's adjusted operators in nodal form: low rank for a uniform cap,
+/// eq (27) over every mode otherwise. Built once per beam: it holds the modes.
+std::shared_ptr<const NodalAdjusted> nodal_adjusted(const BeamPart& beam) {
   const BeamSystem& sys = beam.system;
-  if (!adjusted || !beam.has_adjustment) return sparse_beam_force(sys.C, sys.K);
-  auto na = std::make_shared<NodalAdjusted>(
-      beam.adjusted.uniform ? low_rank_adjusted(sys.M, beam.basis, beam.adjusted)
-                            : eq27_adjusted(sys.M, beam.basis, beam.adjusted));
+  return std::make_shared<const NodalAdjusted>(beam.adjusted.uniform
+                                                   ? low_rank_adjusted(sys.M, beam.basis, beam.adjusted)
+                                                   : eq27_adjusted(sys.M, beam.basis, beam.adjusted));
+}
+
+BeamForceFn adjusted_force(const BeamSystem& sys, std::shared_ptr<const NodalAdjusted> na) {
   auto M = std::make_shared<Eigen::SparseMatrix<double>>(sys.M);
   const int n = static_cast<int>(sys.M.rows());
   const int m = static_cast<int>(na->U.cols());
@@ -46,11 +52,9 @@ BeamForceFn beam_force(const BeamPart& beam, bool adjusted) {
   };
 }
 
-BeamForceFn beam_acceleration(const BeamPart& beam, bool adjusted) {
-  const BeamSystem& sys = beam.system;
-  if (!adjusted || !beam.has_adjustment || !beam.adjusted.uniform) return {};
-  const NodalAdjusted na = low_rank_adjusted(sys.M, beam.basis, beam.adjusted);
-  if (na.C.S.size() > 0 || na.K.S.size() > 0) return {};
+/// Empty unless `na` is the low-rank form with no sparse part.
+BeamForceFn adjusted_acceleration(const BeamSystem& sys, const NodalAdjusted& na) {
+  if (!na.low_rank || na.C.S.size() > 0 || na.K.S.size() > 0) return {};
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(sys.M);
   if (ldlt.info() != Eigen::Success) return {};
   const Eigen::VectorXd minv_p = ldlt.solve(sys.P);
@@ -69,6 +73,18 @@ BeamForceFn beam_acceleration(const BeamPart& beam, bool adjusted) {
     a = minv_p - s_C * qd - s_K * q;
     if (low_rank->U.cols() > 0) subtract_low_rank(*low_rank, q.data(), qd.data(), a.data());
   };
+}
+
+}  // namespace
+
+BeamForceFn beam_force(const BeamPart& beam, bool adjusted) {
+  if (!adjusted || !beam.has_adjustment) return sparse_beam_force(beam.system.C, beam.system.K);
+  return adjusted_force(beam.system, nodal_adjusted(beam));
+}
+
+BeamForceFn beam_acceleration(const BeamPart& beam, bool adjusted) {
+  if (!adjusted || !beam.has_adjustment || !beam.adjusted.uniform) return {};
+  return adjusted_acceleration(beam.system, *nodal_adjusted(beam));
 }
 
 namespace {
@@ -101,24 +117,24 @@ std::vector<CoupledBeam> coupled_beams(const BeamModel& beams, bool adjusted,
       if (std::find(s.beams.begin(), s.beams.end(), static_cast<int>(k)) != s.beams.end()) structure = &s;
     if (adjusted && structure) {
       out.push_back(joined_member(b.system, structure->c_star, structure->k_star));
+    } else if (!adjusted || !b.has_adjustment) {
+      out.push_back(coupled_beam(b.system, beam_force(b, false)));
+      out.back().C = b.system.C;
+      out.back().K = b.system.K;
     } else {
-      out.push_back(coupled_beam(b.system, beam_force(b, adjusted)));
-      out.back().acceleration = beam_acceleration(b, adjusted);
-      if (!adjusted || !b.has_adjustment) {
-        out.back().C = b.system.C;
-        out.back().K = b.system.K;
-      } else if (b.adjusted.uniform) {
-        const NodalAdjusted na = low_rank_adjusted(b.system.M, b.basis, b.adjusted);
-        if (na.C.S.size() == 0 && na.K.S.size() == 0) {
-          out.back().C = na.C.s * b.system.M;
-          out.back().K = na.K.s * b.system.M;
-          auto low_rank = std::make_shared<BeamLowRank>();
-          const Eigen::Index m = na.U.cols();
-          low_rank->U = na.U;
-          low_rank->d_C = na.C.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.C.d;
-          low_rank->d_K = na.K.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.K.d;
-          out.back().low_rank = std::move(low_rank);
-        }
+      const std::shared_ptr<const NodalAdjusted> operators = nodal_adjusted(b);
+      const NodalAdjusted& na = *operators;
+      out.push_back(coupled_beam(b.system, adjusted_force(b.system, operators)));
+      out.back().acceleration = adjusted_acceleration(b.system, na);
+      if (na.low_rank && na.C.S.size() == 0 && na.K.S.size() == 0) {
+        out.back().C = na.C.s * b.system.M;
+        out.back().K = na.K.s * b.system.M;
+        auto low_rank = std::make_shared<BeamLowRank>();
+        const Eigen::Index m = na.U.cols();
+        low_rank->U = na.U;
+        low_rank->d_C = na.C.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.C.d;
+        low_rank->d_K = na.K.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.K.d;
+        out.back().low_rank = std::move(low_rank);
       }
     }
     if (b.system.has_time_loads()) {
