@@ -15,6 +15,9 @@ namespace {
 // Jacobian kernel: the cube root of machine epsilon balances truncation
 // (h^2) against round-off (eps / h), relative to the coordinate's size.
 constexpr double kDifferenceStep = 6e-6;
+// The Woodbury capacity matrix I + D W^T B^-1 W is taken as singular below this
+// reciprocal condition number (Eigen's 1-norm estimate; a margin of ~1e3 ulps).
+constexpr double kSingularCapacityRcond = 1e-13;
 
 }  // namespace
 
@@ -293,10 +296,10 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
        << "); are the contacts independent?";
     throw std::runtime_error(os.str());
   }
-  factorize_low_rank(c_q, c_v);
+  factorize_low_rank(t, c_q, c_v);
 }
 
-void CoupledImplicitSystem::factorize_low_rank(double c_q, double c_v) {
+void CoupledImplicitSystem::factorize_low_rank(double t, double c_q, double c_v) {
   // The low-rank beams add W D W^T to the sparse matrix B, W = U on each
   // beam's rows, D = c_v d_C + c_q d_K. Woodbury, in the form that never
   // inverts D (an entry may be zero):
@@ -338,6 +341,14 @@ void CoupledImplicitSystem::factorize_low_rank(double c_q, double c_v) {
   Eigen::MatrixXd capacity = low_rank_d_.asDiagonal() * (W.transpose() * low_rank_z_);
   capacity.diagonal().array() += 1.0;
   capacity_lu_.compute(capacity);
+  // Singular exactly when B + W D W^T is (B regular, factored above).
+  const double rcond = capacity_lu_.rcond();
+  if (!(rcond >= kSingularCapacityRcond)) {
+    std::ostringstream os;
+    os << "implicit step at t = " << t << " s: the Newton matrix is singular in its low-rank part (the adjusted "
+       << "modes, by Woodbury: reciprocal condition number " << rcond << ")";
+    throw std::runtime_error(os.str());
+  }
   low_rank_w_ = std::move(W);
 }
 

@@ -59,7 +59,8 @@ class CoupledImplicitSystem final : public AugmentedSystem, public SecondOrderSy
 
  private:
   /// The Woodbury data of the low-rank beams after the sparse LU.
-  void factorize_low_rank(double c_q, double c_v);
+  /// @throws std::runtime_error if the capacity matrix is singular.
+  void factorize_low_rank(double t, double c_q, double c_v);
   /// The entries of y ([q_b; q_c], or rates) on a joined structure's beams, stacked.
   void stack_joined(const JoinedLowRank& js, const Eigen::VectorXd& y, Eigen::VectorXd& out) const;
   /// tau = M_b a + F_b - Q_b at the rigid coordinates given (motion imposed by the caller).
