@@ -64,8 +64,8 @@ void BeamLinks::apply(const double* qc, const double* qcd, Eigen::Ref<Eigen::Vec
     st.slack = e.slack && t <= 0.0;
     if (st.slack) t = 0.0;
     st.tension = t;
-    // Inside a joined structure, the force less its linear part (see the header).
-    const double f = e.inside ? t - (e.k * (ext + e.rest) + e.c * rate) : t;
+    // Inside a joined structure, the force less the structure's part (see the header).
+    const double f = e.inside ? t - e.k * (ext + e.rest) : t;
     if (f == 0.0) continue;
     for (int i = 0; i < e.g.size; ++i) beam_force[e.g.cols[i]] -= f * e.g.values[i];
   }

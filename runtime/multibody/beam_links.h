@@ -10,10 +10,10 @@
 // stiffness is k g g^T and the damping c g g^T while the link is taut.
 //
 // A link inside a joined structure (docs/catenary.md, "The joined
-// structure") has its taut, linear part k g g^T q + c g g^T q' in the
-// structure's adjusted K and C already; as a force it adds only what departs
-// from that: + k rest g while taut, + (k e_q + c e') g while slack
-// (e_q = g q, the extension without the rest offset).
+// structure") has its spring's linear part k g g^T q in the structure's
+// adjusted K already; as a force it adds only what departs from that:
+// + k rest g - c e' g while taut (the damper acts in full), + k e_q g while
+// slack (e_q = g q, the extension without the rest offset).
 #pragma once
 
 #include <Eigen/Core>

@@ -225,14 +225,15 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
   }
   if (links_.count() > 0) {
     // Taut links: k g g^T and c g g^T on the beam DOFs they join. A link
-    // inside a joined structure has these in the structure while taut and
-    // takes them away while slack.
+    // inside a joined structure has its k g g^T in the structure: only its
+    // damper while taut, minus its spring while slack.
     links_.apply(q.data() + nb, v.data() + nb, fc_);
     for (int k = 0; k < links_.count(); ++k) {
       const bool slack = links_.states()[k].slack;
-      if (slack != links_.inside_structure(k)) continue;
+      const double spring = c_q * links_.stiffness(k), damper = c_v * links_.damping(k);
+      const double w = !links_.inside_structure(k) ? (slack ? 0.0 : spring + damper) : (slack ? -spring : damper);
+      if (w == 0.0) continue;
       const BeamLinks::Gradient& g = links_.gradient(k);
-      const double w = (slack ? -1.0 : 1.0) * (c_q * links_.stiffness(k) + c_v * links_.damping(k));
       for (int i = 0; i < g.size; ++i)
         for (int j = 0; j < g.size; ++j) add(nb + g.cols[i], nb + g.cols[j], w * g.values[i] * g.values[j]);
     }

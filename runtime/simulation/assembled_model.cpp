@@ -46,14 +46,9 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   if (any_joined && kind_ == ModelKind::kCoupled) {
     try {
       joined_ = joined_structures(model_, beams_, options.dense_limit);
-    } catch (const std::invalid_argument& e) {
-      // Said at the first joined beam's adjustment block.
-      for (const ir::Beam& b : model_.beams)
-        if (b.adjustment.active() && b.adjustment.scope == ir::AdjustmentScope::kJoined) {
-          adjustment_unavailable_ = e.what();
-          adjustment_unavailable_at_ = b.adjustment.loc;
-          break;
-        }
+    } catch (const JoinedStructureError& e) {
+      adjustment_unavailable_ = e.what();
+      adjustment_unavailable_at_ = model_.beams[e.beam].adjustment.loc;
     }
   }
   for (const BeamPart& part : beams_.beams) {
@@ -62,7 +57,7 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
     // (A joined structure's members are adjusted as the structure, above.)
     const ir::Beam& b = model_.beams[&part - beams_.beams.data()];
     if (b.adjustment.scope == ir::AdjustmentScope::kJoined) continue;
-    if (part.has_adjustment && !part.basis.complete &&
+    if (adjustment_unavailable_.empty() && part.has_adjustment && !part.basis.complete &&
         !(part.adjusted.adjusted > 0 && part.adjusted.change.back() == ModeChange::kAdjusted && part.adjusted.uniform)) {
       adjustment_unavailable_at_ = b.adjustment.loc;
       adjustment_unavailable_ = "beam '" + part.system.name + "' has " + std::to_string(part.system.M.rows()) +

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -51,8 +52,11 @@ double slack_stiffness_ratio(const ir::Model& model, const JoinedStructure& s, c
     for (int i = 0; i < g.size; ++i) pg.col(a) += g.values[i] * s.basis.phi.row(g.cols[i]).transpose();
     pg.col(a) *= std::sqrt(link.stiffness);
   }
-  for (int j = 0; j < s.dof; ++j)
-    pg.row(j) /= std::sqrt(adjusted ? s.adjusted.modes[j].k : s.original[j].k);
+  for (int j = 0; j < s.dof; ++j) {
+    const double k = adjusted ? s.adjusted.modes[j].k : s.original[j].k;
+    if (!(k > 0.0)) return std::numeric_limits<double>::infinity();  // no stiffness at all along mode j
+    pg.row(j) /= std::sqrt(k);
+  }
   const Eigen::MatrixXd ratio = pg.transpose() * pg;
   return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(ratio, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
 }
@@ -70,7 +74,7 @@ JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vec
   }
   const std::string name = joined_name(model, s.beams);
   if (s.dof > dense_limit)
-    throw std::invalid_argument("the joined structure " + name + " has " + std::to_string(s.dof) +
+    throw JoinedStructureError(s.beams.front(), "the joined structure " + name + " has " + std::to_string(s.dof) +
                                 " DOFs, beyond the dense modal analysis (" + std::to_string(dense_limit) +
                                 "): its adjustment needs every mode; use scope 'beam', or run the original "
                                 "model (--adjust off)");
@@ -82,17 +86,18 @@ JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vec
     add_block(sys.K, offsets[b], 1.0, tk);
     add_block(sys.C, offsets[b], 1.0, tc);
   }
-  // The links inside, taut: k g g^T and c g g^T.
+  // The links inside, taut: k g g^T in K_s. Their dampers stay out of C_s
+  // and act as exact forces: a slack link takes its damper away, and C_adj,
+  // which holds only the diagonal of Phi^T C_s Phi, could not give it back
+  // without going indefinite.
   for (int l = 0; l < static_cast<int>(model.links.size()); ++l) {
     const ir::Link& link = model.links[l];
     if (!member(link.a.beam) || !member(link.b.beam)) continue;
     s.links.push_back(l);
     const BeamLinks::Gradient g = link_gradient(link, meshes, offsets);
     for (int i = 0; i < g.size; ++i)
-      for (int j = 0; j < g.size; ++j) {
+      for (int j = 0; j < g.size; ++j)
         tk.emplace_back(g.cols[i], g.cols[j], link.stiffness * g.values[i] * g.values[j]);
-        if (link.damping > 0.0) tc.emplace_back(g.cols[i], g.cols[j], link.damping * g.values[i] * g.values[j]);
-      }
   }
   Eigen::SparseMatrix<double> M(s.dof, s.dof), K(s.dof, s.dof), C(s.dof, s.dof);
   M.setFromTriplets(tm.begin(), tm.end());
@@ -101,8 +106,8 @@ JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vec
   s.basis = modal_dense(M, K);
   // Modal damping: the diagonal of Phi^T C_s Phi. The beams' Rayleigh C is
   // not alpha M_s + beta K_s once links join them (beta k g g^T is missing),
-  // so Phi^T C_s Phi has small off-diagonal entries; the modal form drops
-  // them (docs/catenary.md measures what that costs).
+  // so Phi^T C_s Phi has off-diagonal entries, not small next to its
+  // diagonal; the modal form drops them (docs/catenary.md).
   const Eigen::MatrixXd c_phi = C * s.basis.phi;
   s.original.resize(s.dof);
   for (int j = 0; j < s.dof; ++j) {
@@ -118,13 +123,18 @@ JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vec
     s.slack_stiffness_ratio = slack_stiffness_ratio(model, s, meshes, offsets, true);
     if (!(s.slack_stiffness_ratio < 1.0)) {
       std::ostringstream os;
-      os << "with its slack links slack, the adjusted structure would have no stiffness left where they act: "
-            "the largest eigenvalue of k g^T K_adj^-1 g over them is "
-         << s.slack_stiffness_ratio << " (it must be below 1; the original structure's is "
-         << slack_stiffness_ratio(model, s, meshes, offsets, false)
-         << "). The cap softens the modes that carry the links' own stiffness, and a slack link takes all of it "
-            "away (docs/catenary.md, \"The joined structure\"). Give the beams scope 'beam' (the links then act "
-            "as exact forces), or raise omega_limit";
+      os << "with its slack links slack, the adjusted structure would have no stiffness left where they act: ";
+      if (std::isfinite(s.slack_stiffness_ratio)) {
+        os << "the largest eigenvalue of [sqrt(k_a k_b) g_a^T K_adj^-1 g_b] over them is " << s.slack_stiffness_ratio
+           << " (it must be below 1; the original structure's is "
+           << slack_stiffness_ratio(model, s, meshes, offsets, false)
+           << "). The cap softens the modes that carry the links' own stiffness, and a slack link takes all of it "
+              "away";
+      } else {
+        os << "the structure has a mode of zero frequency";
+      }
+      os << " (docs/catenary.md, \"The joined structure\"). Give the beams scope 'beam' (the links then act as "
+            "exact forces), or raise omega_limit";
       throw std::invalid_argument(os.str());
     }
     s.k_star = na.K.s;
@@ -139,7 +149,7 @@ JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vec
     low_rank->d_K = na.K.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.K.d;
     s.low_rank = std::move(low_rank);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("the joined structure " + name + ": " + e.what());
+    throw JoinedStructureError(s.beams.front(), "the joined structure " + name + ": " + e.what());
   }
   return s;
 }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -32,11 +33,17 @@ struct JoinedStructure {
   std::shared_ptr<const JoinedLowRank> low_rank;
 };
 
+/// Why a joined structure cannot be adjusted; `beam` is its first beam (model order).
+class JoinedStructureError : public std::invalid_argument {
+ public:
+  JoinedStructureError(int beam, const std::string& what) : std::invalid_argument(what), beam(beam) {}
+  int beam;
+};
+
 /// The joined structures of `model`: the beams whose active adjustment has
 /// scope 'joined', grouped by the links between them (the parser has checked
-/// that linked beams share the block). A beam with such a block and no links
-/// is a structure of its own.
-/// @throws std::invalid_argument if a structure has more than `dense_limit`
+/// that each has a link and that linked beams share the block).
+/// @throws JoinedStructureError if a structure has more than `dense_limit`
 ///         DOFs (every mode is needed, by the dense path), its adjusted modes
 ///         are not a tail of its spectrum, or its slack links could leave it
 ///         without stiffness (slack_stiffness_ratio >= 1); the message names the beams.
