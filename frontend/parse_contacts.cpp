@@ -1,6 +1,7 @@
 // ModelParser: contacts between a body vertex and a beam.
 #include "frontend/model_parser.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mbfe::frontend {
@@ -118,6 +119,18 @@ void ModelParser::parse_links(const MapView& top, const Field& field) {
 
 void ModelParser::check_joined_adjustments(const MapView& top) const {
   auto joined = [](const Adjustment& a) { return a.active() && a.scope == AdjustmentScope::kJoined; };
+  for (std::size_t b = 0; b < model_.beams.size(); ++b) {
+    if (!joined(model_.beams[b].adjustment)) continue;
+    const bool linked = std::any_of(model_.links.begin(), model_.links.end(), [&](const Link& l) {
+      return l.a.beam == static_cast<int>(b) || l.b.beam == static_cast<int>(b);
+    });
+    if (!linked) {
+      top.fail(model_.beams[b].adjustment.loc,
+               "beam " + quoted(model_.beams[b].name) +
+                   ": scope 'joined' adjusts a beam together with the beams links join it to, and no link "
+                   "joins it to another beam; use scope 'beam'");
+    }
+  }
   for (const Link& link : model_.links) {
     const Beam& a = model_.beams[link.a.beam];
     const Beam& b = model_.beams[link.b.beam];
