@@ -159,6 +159,10 @@ nlohmann::json beam_json(const runtime::BeamPart& r) {
 
 void add_adjusted_json(nlohmann::json& beam, const ir::Beam& b, const runtime::BeamPart& a) {
   if (!a.has_adjustment) return;
+  if (b.adjustment.scope == ir::AdjustmentScope::kJoined) {
+    beam["adjusted"] = {{"scope", "joined"}};  // the structure's modes are capped, not the beam's own
+    return;
+  }
   nlohmann::json block = spectrum_json(a.adjusted_spectrum);
   block["policy"] = policy_name(b.adjustment.policy);
   block["omega_limit"] = b.adjustment.omega_limit;
@@ -177,7 +181,13 @@ void print_beam_text(std::ostream& out, const ir::Beam& b, const runtime::BeamPa
                   : "sparse Lanczos, lowest " + std::to_string(r.basis.omega.size()) + " modes")
       << ")\n";
   out << "state-space eigenvalues of eq (28), sorted by modulus (the paper's Table 1):\n";
-  if (r.has_adjustment) {
+  // A joined beam's own modes are not the ones capped: its structure's are,
+  // which the coupled spectrum shows.
+  const bool joined = r.has_adjustment && b.adjustment.scope == ir::AdjustmentScope::kJoined;
+  if (joined)
+    out << "(adjusted with the beams linked to it, as one structure (scope 'joined'): its own adjusted "
+           "spectrum is not computed; the coupled spectrum includes the structure's)\n";
+  if (r.has_adjustment && !joined) {
     out << "summary (original): " << spectrum_summary(r.original_spectrum, dof) << "\n";
     print_adjusted_text(out, b, r, all);
     return;
