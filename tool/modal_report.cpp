@@ -186,7 +186,7 @@ void print_beam_text(std::ostream& out, const ir::Beam& b, const runtime::BeamPa
   const bool joined = r.has_adjustment && b.adjustment.scope == ir::AdjustmentScope::kJoined;
   if (joined)
     out << "(adjusted with the beams linked to it, as one structure (scope 'joined'): its own adjusted "
-           "spectrum is not computed; the coupled spectrum includes the structure's)\n";
+           "spectrum, not the one capped, is not shown; the coupled spectrum includes the structure's)\n";
   if (r.has_adjustment && !joined) {
     out << "summary (original): " << spectrum_summary(r.original_spectrum, dof) << "\n";
     print_adjusted_text(out, b, r, all);
