@@ -1,9 +1,9 @@
 // Joined structures: beams joined by links (a catenary's wires and droppers)
 // whose adjustment blocks have scope 'joined' are analysed and adjusted as one
-// structure, the links taut (docs/catenary.md, "The joined structure"). The
-// adjusted structure is the low-rank form of docs/damping-adjustment.md over
-// the stacked coordinates of its beams; a slack link is a force correction
-// (beam_links.h).
+// structure, the links' springs taut (docs/catenary.md, "The joined
+// structure"). The adjusted structure is the low-rank form of
+// docs/damping-adjustment.md over the stacked coordinates of its beams; a
+// slack link is a force correction, a link's damper a force (beam_links.h).
 #pragma once
 
 #include <memory>
