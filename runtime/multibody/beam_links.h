@@ -46,7 +46,7 @@ class BeamLinks {
   bool can_go_slack(int k) const { return ends_[k].slack; }
   double rest(int k) const { return ends_[k].rest; }
   void set_rest(int k, double rest) { ends_[k].rest = rest; }
-  /// Link k's linear part is in a joined structure's K and C (see above).
+  /// Link k's spring is in a joined structure's K (see above).
   bool inside_structure(int k) const { return ends_[k].inside; }
   void set_inside_structure(int k, bool inside) { ends_[k].inside = inside; }
 
