@@ -1,5 +1,6 @@
 // mbfe simulate MODEL.yaml [--integrator NAME] [--step H] [--t-end T] [--out FILE.csv] ...
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <iostream>
@@ -41,7 +42,8 @@ Options:
                      NumPy array (rows x columns, numpy.load reads it) instead;
                      FILE.csv.json / FILE.npy.json beside it says what it holds:
                      model and SHA-256, integrator, step, damping variant, each
-                     column's name and unit, how the run ended
+                     column's name and unit, how the run ended (not beside
+                     a device such as /dev/null)
   --every N          write every N-th step (default: at most about 10000 rows)
   --adjust on|off    beam and coupled models: use the modal adjustment of
                      damping (default: on when a beam has an adjustment block)
@@ -150,6 +152,10 @@ class TeeObserver : public runtime::SimulationObserver {
 /// reads the CSV later (a person, a notebook, a sweep).
 void write_sidecar(const std::string& csv_path, const Model& model, const runtime::SimulationRequest& request,
                    const runtime::SimulationReport& report, const ResultsObserver& observer, std::size_t rows) {
+  // Output into a device or a pipe (--out /dev/null): no file to describe,
+  // and no "/dev/null.json" to leave behind.
+  std::error_code not_a_file;
+  if (!std::filesystem::is_regular_file(csv_path, not_a_file)) return;
   nlohmann::json j;
   j["mbfe"] = MBFE_GENERATOR_VERSION;
   j["model"] = {{"name", model.ir().name}, {"file", model.ir().source_path}, {"sha256", model.ir().source_sha256}};
