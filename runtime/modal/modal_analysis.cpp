@@ -186,8 +186,14 @@ class FactorQrShiftInvert {
   std::unique_ptr<BandedQr> qr_;
 };
 
+/// The k eigenpairs of K Phi = M Phi Lambda nearest options.shift, unsorted.
+struct EigenPairs {
+  Eigen::VectorXd lambda;
+  Eigen::MatrixXd vectors;
+};
+
 template <typename Op>
-ModalBasis lanczos(Op& op, const Eigen::SparseMatrix<double>& M, int k, int ncv,
+EigenPairs lanczos(Op& op, const Eigen::SparseMatrix<double>& M, int k, int ncv,
                    const SparseModalOptions& options);
 
 void check_sizes(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& K) {
@@ -262,16 +268,18 @@ ModalBasis modal_sparse(const Eigen::SparseMatrix<double>& M, const Eigen::Spars
                                   " columns, expected " + std::to_string(n));
     }
     FactorQrShiftInvert op(*options.stiffness_factor, M);
-    return lanczos(op, M, k, ncv, options);
+    const EigenPairs pairs = lanczos(op, M, k, ncv, options);
+    return finish(pairs.lambda, pairs.vectors, M);
   }
   SparseLdltShiftInvert op(K, M);
-  return lanczos(op, M, k, ncv, options);
+  const EigenPairs pairs = lanczos(op, M, k, ncv, options);
+  return finish(pairs.lambda, pairs.vectors, M);
 }
 
 namespace {
 
 template <typename Op>
-ModalBasis lanczos(Op& op, const Eigen::SparseMatrix<double>& M, int k, int ncv,
+EigenPairs lanczos(Op& op, const Eigen::SparseMatrix<double>& M, int k, int ncv,
                    const SparseModalOptions& options) {
   Spectra::SparseSymMatProd<double> bop(M);
   Spectra::SymGEigsShiftSolver<Op, Spectra::SparseSymMatProd<double>,
@@ -281,10 +289,144 @@ ModalBasis lanczos(Op& op, const Eigen::SparseMatrix<double>& M, int k, int ncv,
   solver.compute(Spectra::SortRule::LargestMagn, options.max_restarts, options.tolerance,
                  Spectra::SortRule::SmallestAlge);
   if (solver.info() != Spectra::CompInfo::Successful) {
-    throw std::runtime_error("sparse modal analysis: Lanczos did not converge for the lowest " +
-                             std::to_string(k) + " modes");
+    throw std::runtime_error("sparse modal analysis: Lanczos did not converge for the " +
+                             std::to_string(k) + " modes nearest the shift " + std::to_string(options.shift));
   }
-  return finish(solver.eigenvalues(), solver.eigenvectors(), M);
+  return {solver.eigenvalues(), solver.eigenvectors()};
+}
+
+}  // namespace
+
+int eigenvalues_below(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& K, double lambda) {
+  check_sizes(M, K);
+  // Sylvester's law of inertia: K - lambda M = P^T L D L^T P is a congruence,
+  // so D has as many negative entries as K - lambda M has negative
+  // eigenvalues, which (M positive definite) is the number of eigenvalues of
+  // K Phi = M Phi Lambda below lambda.
+  const Eigen::SparseMatrix<double> A = K - lambda * M;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+  if (ldlt.info() != Eigen::Success) {
+    throw std::runtime_error("modal analysis: K - lambda M (lambda = " + std::to_string(lambda) +
+                             ") cannot be factorised to count its eigenvalues");
+  }
+  return static_cast<int>((ldlt.vectorD().array() < 0.0).count());
+}
+
+ModalBasis modal_below(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& K,
+                       double omega_max, const SlicedModalOptions& options) {
+  check_sizes(M, K);
+  const int n = static_cast<int>(M.rows());
+  if (!(omega_max > 0.0)) {
+    throw std::invalid_argument("spectrum slicing: the bound must be > 0 rad/s, got " + std::to_string(omega_max));
+  }
+  if (options.slice_modes < 1) {
+    throw std::invalid_argument("spectrum slicing: slice_modes must be >= 1, got " +
+                                std::to_string(options.slice_modes));
+  }
+  if (options.stiffness_factor && options.stiffness_factor->cols() != n) {
+    throw std::invalid_argument("spectrum slicing: the stiffness factor has " +
+                                std::to_string(options.stiffness_factor->cols()) + " columns, expected " +
+                                std::to_string(n));
+  }
+  const int wanted = eigenvalues_below(M, K, omega_max * omega_max) + 1;
+  if (wanted >= n) {
+    throw std::invalid_argument("spectrum slicing: " + std::to_string(wanted - 1) + " of the " +
+                                std::to_string(n) + " modes lie below " + std::to_string(omega_max) +
+                                " rad/s; the dense path finds every mode");
+  }
+  double edge = options.lower;  // between two eigenvalues; every one below it is found
+  if (eigenvalues_below(M, K, edge) != 0) {
+    throw std::invalid_argument("spectrum slicing: the lower edge " + std::to_string(edge) +
+                                " lies above the lowest eigenvalue");
+  }
+  const int per_run = std::min(options.slice_modes, n - 1);
+  const int ncv = std::min(n, 2 * per_run + 1);
+  Eigen::VectorXd lambda(wanted);
+  Eigen::MatrixXd vectors(n, wanted);
+  int found = 0;
+  double shift = edge;
+  // Each run returns the per_run eigenvalues nearest its shift, i.e. every
+  // eigenvalue inside (shift - D, shift + D). A run counts when that window
+  // reaches below the edge; its new eigenvalues end at a new edge in the
+  // widest gap of the window's upper third (so a cluster of nearly equal
+  // eigenvalues is never split between runs, whose vectors would then not be
+  // M-orthogonal), and the inertia count between the two edges must agree.
+  const int max_runs = 4 * (wanted / per_run + 1) + 20;
+  for (int run = 0; found < wanted; ++run) {
+    if (run == max_runs) {
+      throw std::runtime_error("spectrum slicing: " + std::to_string(found) + " of " + std::to_string(wanted) +
+                               " modes after " + std::to_string(run) + " Lanczos runs");
+    }
+    SparseModalOptions so;
+    so.shift = shift;
+    so.tolerance = options.tolerance;
+    so.max_restarts = options.max_restarts;
+    EigenPairs pairs;
+    if (options.stiffness_factor && shift <= 0.0) {
+      FactorQrShiftInvert op(*options.stiffness_factor, M);
+      pairs = lanczos(op, M, per_run, ncv, so);
+    } else {
+      SparseLdltShiftInvert op(K, M);
+      pairs = lanczos(op, M, per_run, ncv, so);
+    }
+    const double reach = (pairs.lambda.array() - shift).abs().maxCoeff();
+    if (shift - reach >= edge) {  // a gap above the edge: move the shift back
+      shift = edge + 0.25 * (shift - edge);
+      continue;
+    }
+    const double upper = shift + reach * (1.0 - 1e-9);  // a tie at the window's rim may be missing
+    std::vector<Eigen::Index> inside;
+    for (Eigen::Index j = 0; j < pairs.lambda.size(); ++j)
+      if (pairs.lambda[j] > edge && pairs.lambda[j] < upper) inside.push_back(j);
+    std::sort(inside.begin(), inside.end(),
+              [&](Eigen::Index a, Eigen::Index b) { return pairs.lambda[a] < pairs.lambda[b]; });
+    const int m = static_cast<int>(inside.size());
+    int take = 0;
+    double next_edge = 0.5 * (edge + upper);
+    double widest = -1.0;
+    for (int i = (2 * m) / 3; i < m; ++i) {
+      const double lo = pairs.lambda[inside[i]];
+      const double hi = i + 1 < m ? pairs.lambda[inside[i + 1]] : upper;
+      if (hi - lo > widest) {
+        widest = hi - lo;
+        take = i + 1;
+        next_edge = 0.5 * (lo + hi);
+      }
+    }
+    const int counted = eigenvalues_below(M, K, next_edge) - found;
+    if (counted != take) {
+      throw std::runtime_error("spectrum slicing: " + std::to_string(counted) + " eigenvalues lie between " +
+                               std::to_string(edge) + " and " + std::to_string(next_edge) + ", Lanczos found " +
+                               std::to_string(take));
+    }
+    for (int i = 0; i < take && found < wanted; ++i, ++found) {
+      lambda[found] = pairs.lambda[inside[i]];
+      vectors.col(found) = pairs.vectors.col(inside[i]);
+    }
+    // Next shift: ahead of the edge by 0.7 of the half-width this run's
+    // density predicts, so the next window overlaps the edge. Eigenvalues of
+    // a beam or a string thin out upwards: the prediction errs on the safe side.
+    const double density = std::max(take, 1) / (next_edge - edge);
+    edge = next_edge;
+    shift = edge + 0.7 * (0.5 * per_run) / density;
+  }
+  return finish(lambda, vectors, M);
+}
+
+namespace {
+
+/// A shift below a beam's lowest eigenvalue. Scale of the lowest eigenvalue:
+/// max diag(K)/diag(M) is 420 EI/(rho A le^4) (slope DOF, consistent mass;
+/// 312 lumped), so dividing by 420 ne^4 gives about EI/(rho A L^4): 1/97 of a
+/// pinned beam's first eigenvalue, 1/12 of a cantilever's. A shift of -1 % of
+/// that is far below the lowest mode and keeps K - sigma M definite when the
+/// beam has rigid (omega = 0) modes.
+double shift_below_lowest(const BeamSystem& beam) {
+  const Eigen::VectorXd dk = beam.K.diagonal();
+  const Eigen::VectorXd dm = beam.M.diagonal();
+  const double ratio = (dk.array() / dm.array()).maxCoeff();
+  const double ne = beam.num_nodes - 1;
+  return -1e-2 * ratio / (420.0 * ne * ne * ne * ne);
 }
 
 }  // namespace
@@ -301,23 +443,20 @@ ModalBasis modal_analysis(const BeamSystem& beam, const ModalOptions& options) {
     }
     return basis;
   }
+  if (options.up_to_omega > 0.0) {
+    SlicedModalOptions sliced;
+    sliced.lower = shift_below_lowest(beam);
+    if (beam.stiffness_factor.size() > 0) sliced.stiffness_factor = &beam.stiffness_factor;
+    return modal_below(beam.M, beam.K, options.up_to_omega, sliced);
+  }
   if (all) {
     throw std::invalid_argument("beam '" + beam.name + "' has " + std::to_string(n) +
                                 " DOFs, above the dense limit " +
                                 std::to_string(options.dense_limit) +
                                 "; ask for the lowest k modes (sparse path)");
   }
-  // Scale of the lowest eigenvalue: max diag(K)/diag(M) is 420 EI/(rho A le^4)
-  // (slope DOF, consistent mass; 312 lumped), so dividing by 420 ne^4 gives
-  // about EI/(rho A L^4): 1/97 of a pinned beam's first eigenvalue, 1/12 of a
-  // cantilever's. A shift of -1 % of that is far below the lowest mode and
-  // keeps K - sigma M definite when the beam has rigid (omega = 0) modes.
-  const Eigen::VectorXd dk = beam.K.diagonal();
-  const Eigen::VectorXd dm = beam.M.diagonal();
-  const double ratio = (dk.array() / dm.array()).maxCoeff();
-  const double ne = beam.num_nodes - 1;
   SparseModalOptions sparse;
-  sparse.shift = -1e-2 * ratio / (420.0 * ne * ne * ne * ne);
+  sparse.shift = shift_below_lowest(beam);
   if (beam.stiffness_factor.size() > 0) sparse.stiffness_factor = &beam.stiffness_factor;
   return modal_sparse(beam.M, beam.K, options.num_modes, sparse);
 }

@@ -1,12 +1,17 @@
 // Modal analysis K Phi = M Phi Omega^2 (eqs (20)-(22) of the paper) with
 // mass-normalised modes, Phi^T M Phi = I.
 //
-// Two paths:
+// Three paths:
 //  - dense (Eigen::GeneralizedSelfAdjointEigenSolver): every mode; forms
 //    dense n x n copies of M and K, so only for small models;
 //  - sparse shift-invert Lanczos (Spectra::SymGEigsShiftSolver with a sparse
 //    LDLT of K - sigma M): the lowest k modes of a large model, memory
-//    O(nnz + n k), never a dense n x n matrix.
+//    O(nnz + n k), never a dense n x n matrix;
+//  - spectrum slicing: every mode below a bound, by shift-invert Lanczos runs
+//    at successive shifts whose results the inertia of K - sigma M checks
+//    (docs/beams-and-modal.md, "Every mode below a bound"). For the hundreds
+//    or thousands of modes a cap keeps in a large beam, where one Lanczos run
+//    would need a basis nearly as wide as the model.
 // Mode signs are fixed so that the first significant entry (above 1e-3 of the
 // largest) of each column of Phi is positive, so the two paths agree column
 // by column.
@@ -49,16 +54,47 @@ struct SparseModalOptions {
 ModalBasis modal_sparse(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& K,
                         int k, const SparseModalOptions& options = {});
 
+/// The number of eigenvalues of K Phi = M Phi Lambda below lambda (the
+/// negative pivots of a sparse LDLT of K - lambda M; Sylvester's law of
+/// inertia). @throws std::runtime_error if K - lambda M cannot be factorised
+/// (lambda is an eigenvalue).
+int eigenvalues_below(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& K, double lambda);
+
+struct SlicedModalOptions {
+  /// Eigenvalue (rad^2/s^2) below the lowest one, where slicing starts.
+  double lower = -1.0;
+  /// Modes per Lanczos run (its basis is 2 slice_modes + 1 wide).
+  int slice_modes = 100;
+  double tolerance = 1e-10;  // relative, on the Ritz values
+  int max_restarts = 1000;
+  /// As SparseModalOptions::stiffness_factor, for the runs with a shift <= 0.
+  const Eigen::SparseMatrix<double>* stiffness_factor = nullptr;
+};
+
+/// Every mode with omega <= omega_max and the first one above it (so a caller
+/// knows the spectrum beyond the bound starts there), by spectrum slicing.
+/// Memory O(nnz + n k) for the k modes returned.
+/// @throws std::invalid_argument on omega_max <= 0, slice_modes < 1, a
+/// lower edge above the lowest eigenvalue, or a bound above all but one mode
+/// (the dense path is the one for that); std::runtime_error if a factorisation
+/// fails, Lanczos does not converge, or a run's modes disagree with the
+/// inertia count.
+ModalBasis modal_below(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& K,
+                       double omega_max, const SlicedModalOptions& options = {});
+
 struct ModalOptions {
   /// 0 = every mode; otherwise the lowest num_modes.
   int num_modes = 0;
+  /// > 0 (rad/s): for a model above dense_limit, every mode up to this and the
+  /// first above it (spectrum slicing) instead of num_modes.
+  double up_to_omega = 0.0;
   /// Models with more DOFs than this use the sparse path (and need
   /// num_modes > 0); smaller ones use the dense path.
   int dense_limit = 2000;
 };
 
 /// Modal analysis of one assembled beam, choosing the path by size. The
-/// sparse path shifts by -1e-2 times a lower estimate of the beam's lowest
+/// sparse and sliced paths shift by -1e-2 times a lower estimate of the beam's lowest
 /// eigenvalue (from its element stiffness/mass ratio), so beams with rigid
 /// modes work too, and uses the beam's stiffness factor when it has one. @throws std::invalid_argument when a model above
 /// dense_limit asks for every mode.
