@@ -21,6 +21,11 @@ BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamA
   ModalOptions mo;
   mo.dense_limit = options.dense_limit;
   mo.num_modes = part.dense ? 0 : std::min(options.sparse_modes, n - 1);
+  const ir::Adjustment& adj = beam.adjustment;
+  if (!part.dense && options.modes_kept_by_cap && adj.active() && adj.policy == ir::AdjustmentPolicy::kCap &&
+      adj.scope == ir::AdjustmentScope::kBeam && adj.omega_limit > 0.0 &&
+      eigenvalues_below(part.system.M, part.system.K, adj.omega_limit * adj.omega_limit) + 1 < n)
+    mo.up_to_omega = adj.omega_limit;  // a kept mode has |r_fast| <= omega_limit, so omega <= omega_limit
   part.basis = modal_analysis(part.system, mo);
   part.original = rayleigh_modes(part.basis.omega, part.system.rayleigh_alpha, part.system.rayleigh_beta);
   part.has_adjustment = beam.adjustment.active();

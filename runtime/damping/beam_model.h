@@ -24,6 +24,11 @@ struct BeamAnalysisOptions {
   /// advisor use every mode); k > 0 = the lowest k modes by sparse Lanczos,
   /// a partial spectrum (what `mbfe modal` shows of a large beam).
   int sparse_modes = 0;
+  /// Beams above dense_limit whose adjustment is a per-beam cap: every mode
+  /// the cap keeps (omega <= omega_limit) and the first it changes, by
+  /// spectrum slicing, instead of sparse_modes: what the low-rank adjusted
+  /// operators need (a coupled model's time integration).
+  bool modes_kept_by_cap = false;
 };
 
 /// One beam: its finite-element system, modes and modal dynamics.

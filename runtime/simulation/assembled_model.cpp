@@ -30,9 +30,11 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   }
   // A coupled model integrates its beams in nodal coordinates (sparse M, C,
   // K): a beam beyond the dense modal path needs only its lowest modes (for
-  // the report); whether its adjustment can be built from them is checked below.
+  // the report), or with a per-beam cap every mode the cap keeps; whether its
+  // adjustment can be built from them is checked below.
   BeamAnalysisOptions options = beams;
   if (kind_ == ModelKind::kCoupled && options.sparse_modes == 0) options.sparse_modes = kLargeBeamModes;
+  if (kind_ == ModelKind::kCoupled) options.modes_kept_by_cap = true;
   try {
     beams_ = analyse_beams(model_, options);
   } catch (const std::invalid_argument& e) {
