@@ -339,7 +339,28 @@ void CoupledImplicitSystem::factorize_low_rank(double t, double c_q, double c_v)
     col += static_cast<int>(mj);
   }
   low_rank_z_ = lu_.solve(W);
-  Eigen::MatrixXd capacity = low_rank_d_.asDiagonal() * (W.transpose() * low_rank_z_);
+  // W^T Z block by block: W is zero outside its beams' rows (a dense product
+  // would spend most of its time on those zeros in a model of several beams).
+  Eigen::MatrixXd capacity(width, width);
+  for (const LowRankBlock& blk : low_rank_beams_) {
+    const BeamLowRank& lr = *beams[blk.beam].low_rank;
+    capacity.middleRows(blk.col, lr.U.cols()).noalias() =
+        lr.U.transpose() * low_rank_z_.middleRows(blk.row, lr.U.rows());
+  }
+  col = joined_col;
+  for (const auto& js : dyn_->joined()) {
+    const Eigen::Index mj = js->U.cols();
+    capacity.middleRows(col, mj).setZero();
+    Eigen::Index row = 0;
+    for (int b : js->beams) {
+      const int nk = beams[b].mesh.num_free;
+      capacity.middleRows(col, mj).noalias() +=
+          js->U.middleRows(row, nk).transpose() * low_rank_z_.middleRows(nb + cc.beam_offset(b), nk);
+      row += nk;
+    }
+    col += static_cast<int>(mj);
+  }
+  capacity = low_rank_d_.asDiagonal() * capacity;
   capacity.diagonal().array() += 1.0;
   capacity_lu_.compute(capacity);
   // Singular exactly when B + W D W^T is (B regular, factored above).
