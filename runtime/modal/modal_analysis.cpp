@@ -413,14 +413,11 @@ ModalBasis modal_below(const Eigen::SparseMatrix<double>& M, const Eigen::Sparse
   return finish(lambda, vectors, M);
 }
 
-namespace {
-
-/// A shift below a beam's lowest eigenvalue. Scale of the lowest eigenvalue:
-/// max diag(K)/diag(M) is 420 EI/(rho A le^4) (slope DOF, consistent mass;
-/// 312 lumped), so dividing by 420 ne^4 gives about EI/(rho A L^4): 1/97 of a
-/// pinned beam's first eigenvalue, 1/12 of a cantilever's. A shift of -1 % of
-/// that is far below the lowest mode and keeps K - sigma M definite when the
-/// beam has rigid (omega = 0) modes.
+// Scale of the lowest eigenvalue: max diag(K)/diag(M) is 420 EI/(rho A le^4)
+// (slope DOF, consistent mass; 312 lumped), so dividing by 420 ne^4 gives
+// about EI/(rho A L^4): 1/97 of a pinned beam's first eigenvalue, 1/12 of a
+// cantilever's. -1 % of that is far below the lowest mode and keeps
+// K - sigma M definite when the beam has rigid (omega = 0) modes.
 double shift_below_lowest(const BeamSystem& beam) {
   const Eigen::VectorXd dk = beam.K.diagonal();
   const Eigen::VectorXd dm = beam.M.diagonal();
@@ -428,8 +425,6 @@ double shift_below_lowest(const BeamSystem& beam) {
   const double ne = beam.num_nodes - 1;
   return -1e-2 * ratio / (420.0 * ne * ne * ne * ne);
 }
-
-}  // namespace
 
 ModalBasis modal_analysis(const BeamSystem& beam, const ModalOptions& options) {
   const int n = static_cast<int>(beam.M.rows());

@@ -93,6 +93,10 @@ struct ModalOptions {
   int dense_limit = 2000;
 };
 
+/// A shift (rad^2/s^2, < 0) below the lowest eigenvalue of `beam`, from its
+/// element stiffness/mass ratio; K - sigma M stays definite with rigid modes.
+double shift_below_lowest(const BeamSystem& beam);
+
 /// Modal analysis of one assembled beam, choosing the path by size. The
 /// sparse and sliced paths shift by -1e-2 times a lower estimate of the beam's lowest
 /// eigenvalue (from its element stiffness/mass ratio), so beams with rigid
