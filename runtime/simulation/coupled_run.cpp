@@ -240,7 +240,8 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   if (adjusted)
     for (const JoinedStructure& s : model.joined())
       report.variant += ", joined structure " + joined_name(model.ir(), s.beams) + " (" +
-                        std::to_string(s.dof - s.adjusted.adjusted) + " of " + std::to_string(s.dof) + " modes kept)";
+                        std::to_string(s.adjusted.modes.size() - s.adjusted.adjusted) + " of " +
+                        std::to_string(s.dof) + " modes kept)";
   std::string row_fault;
   try {
     report.run = run_simulation(*system, request.integrator, y0, options, [&](double t, const Eigen::VectorXd& y) {

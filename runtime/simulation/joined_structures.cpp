@@ -1,6 +1,7 @@
 #include "runtime/simulation/joined_structures.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -37,27 +38,54 @@ void add_block(const Eigen::SparseMatrix<double>& A, int offset, double scale,
 // set S slack, K_adj - sum_S k g g^T is positive definite exactly when the
 // eigenvalues of [sqrt(k_a k_b) g_a^T K_adj^-1 g_b] over S lie below 1, and
 // every subset's lie below the whole set's largest (interlacing): that one
-// number decides for every combination. K^-1 = Phi diag(1 / k_j) Phi^T.
+// number decides for every combination. With every mode,
+// K^-1 = Phi diag(1 / k_j) Phi^T; with the modes up to the cap and the first
+// beyond (the sliced path), every mode left out has k* and
+// K_adj^-1 = M^-1 / k* + sum over the basis of (1 / k_j - 1 / k*) phi_j phi_j^T,
+// and the original K^-1 is a sparse solve.
 double slack_stiffness_ratio(const ir::Model& model, const JoinedStructure& s, const std::vector<BeamMesh>& meshes,
-                             const std::vector<int>& offsets, bool adjusted) {
+                             const std::vector<int>& offsets, const Eigen::SparseMatrix<double>& M,
+                             const Eigen::SparseMatrix<double>& K, bool adjusted) {
   std::vector<int> slack;
   for (int l : s.links)
     if (model.links[l].slack) slack.push_back(l);
   if (slack.empty()) return 0.0;
   const int ns = static_cast<int>(slack.size());
-  Eigen::MatrixXd pg = Eigen::MatrixXd::Zero(s.dof, ns);  // Phi^T g sqrt(k) / sqrt(k_j)
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(s.dof, ns);  // sqrt(k) g per slack link
   for (int a = 0; a < ns; ++a) {
     const ir::Link& link = model.links[slack[a]];
-    const BeamLinks::Gradient g = link_gradient(link, meshes, offsets);
-    for (int i = 0; i < g.size; ++i) pg.col(a) += g.values[i] * s.basis.phi.row(g.cols[i]).transpose();
-    pg.col(a) *= std::sqrt(link.stiffness);
+    const BeamLinks::Gradient grad = link_gradient(link, meshes, offsets);
+    for (int i = 0; i < grad.size; ++i) g(grad.cols[i], a) += std::sqrt(link.stiffness) * grad.values[i];
   }
-  for (int j = 0; j < s.dof; ++j) {
-    const double k = adjusted ? s.adjusted.modes[j].k : s.original[j].k;
-    if (!(k > 0.0)) return std::numeric_limits<double>::infinity();  // no stiffness at all along mode j
-    pg.row(j) /= std::sqrt(k);
+  const Eigen::Index nb = s.basis.omega.size();
+  const auto modal_k = [&](Eigen::Index j) { return adjusted ? s.adjusted.modes[j].k : s.original[j].k; };
+  Eigen::MatrixXd ratio;
+  if (s.basis.complete) {
+    Eigen::MatrixXd pg = s.basis.phi.transpose() * g;  // Phi^T g sqrt(k) / sqrt(k_j)
+    for (Eigen::Index j = 0; j < nb; ++j) {
+      if (!(modal_k(j) > 0.0)) return std::numeric_limits<double>::infinity();  // no stiffness along mode j
+      pg.row(j) /= std::sqrt(modal_k(j));
+    }
+    ratio = pg.transpose() * pg;
+  } else if (adjusted) {
+    const double k_star = s.adjusted.k_star;
+    if (!(k_star > 0.0)) return std::numeric_limits<double>::infinity();
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass(M);
+    if (mass.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+    const Eigen::MatrixXd minv_g = mass.solve(g);
+    ratio = (g.transpose() * minv_g) / k_star;
+    const Eigen::MatrixXd pg = s.basis.phi.transpose() * g;
+    for (Eigen::Index j = 0; j < nb; ++j) {
+      if (!(modal_k(j) > 0.0)) return std::numeric_limits<double>::infinity();
+      const double w = 1.0 / modal_k(j) - 1.0 / k_star;
+      if (w != 0.0) ratio.noalias() += w * pg.row(j).transpose() * pg.row(j);
+    }
+  } else {
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> stiffness(K);
+    if (stiffness.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+    ratio = g.transpose() * stiffness.solve(g);
   }
-  const Eigen::MatrixXd ratio = pg.transpose() * pg;
+  if (!ratio.allFinite()) return std::numeric_limits<double>::infinity();
   return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(ratio, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
 }
 
@@ -73,11 +101,6 @@ JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vec
     s.dof += static_cast<int>(beams.beams[b].system.M.rows());
   }
   const std::string name = joined_name(model, s.beams);
-  if (s.dof > dense_limit)
-    throw JoinedStructureError(s.beams.front(), "the joined structure " + name + " has " + std::to_string(s.dof) +
-                                " DOFs, beyond the dense modal analysis (" + std::to_string(dense_limit) +
-                                "): its adjustment needs every mode; use scope 'beam', or run the original "
-                                "model (--adjust off)");
   const auto member = [&](int b) { return std::find(s.beams.begin(), s.beams.end(), b) != s.beams.end(); };
   std::vector<Eigen::Triplet<double>> tm, tk, tc;
   for (int b : s.beams) {
@@ -103,31 +126,49 @@ JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vec
   M.setFromTriplets(tm.begin(), tm.end());
   K.setFromTriplets(tk.begin(), tk.end());
   C.setFromTriplets(tc.begin(), tc.end());
-  s.basis = modal_dense(M, K);
+  const ir::Adjustment& adjustment = model.beams[s.beams.front()].adjustment;
+  if (s.dof <= dense_limit) {
+    s.basis = modal_dense(M, K);
+  } else {
+    // Beyond the dense path: every mode the cap keeps and the first it
+    // changes (a kept mode has |r_fast| <= omega_limit, so omega <= omega_limit).
+    // Links only add stiffness, so the members' lowest eigenvalues bound the
+    // structure's from below.
+    SlicedModalOptions sliced;
+    sliced.lower = 0.0;
+    for (int b : s.beams) sliced.lower = std::min(sliced.lower, shift_below_lowest(beams.beams[b].system));
+    try {
+      s.basis = modal_below(M, K, adjustment.omega_limit, sliced);
+    } catch (const std::invalid_argument& e) {
+      throw JoinedStructureError(s.beams.front(), "the joined structure " + name + " has " + std::to_string(s.dof) +
+                                                      " DOFs, beyond the dense modal analysis (" +
+                                                      std::to_string(dense_limit) + "): " + e.what());
+    }
+  }
+  const int k = static_cast<int>(s.basis.omega.size());
   // Modal damping: the diagonal of Phi^T C_s Phi. The beams' Rayleigh C is
   // not alpha M_s + beta K_s once links join them (beta k g g^T is missing),
   // so Phi^T C_s Phi has off-diagonal entries, not small next to its
   // diagonal; the modal form drops them (docs/catenary.md).
   const Eigen::MatrixXd c_phi = C * s.basis.phi;
-  s.original.resize(s.dof);
-  for (int j = 0; j < s.dof; ++j) {
+  s.original.resize(k);
+  for (int j = 0; j < k; ++j) {
     const double w = s.basis.omega[j];
     s.original[j] = {w, s.basis.phi.col(j).dot(c_phi.col(j)), w * w};
   }
-  const ir::Adjustment& adjustment = model.beams[s.beams.front()].adjustment;
   try {
     s.adjusted = adjust_modes(s.original, adjustment);
     const NodalAdjusted na = low_rank_adjusted(M, s.basis, s.adjusted);
     if (na.C.S.size() > 0 || na.K.S.size() > 0)
       throw std::invalid_argument("the adjusted operators have a sparse part beyond c* M and k* M");
-    s.slack_stiffness_ratio = slack_stiffness_ratio(model, s, meshes, offsets, true);
+    s.slack_stiffness_ratio = slack_stiffness_ratio(model, s, meshes, offsets, M, K, true);
     if (!(s.slack_stiffness_ratio < 1.0)) {
       std::ostringstream os;
       os << "with its slack links slack, the adjusted structure would have no stiffness left where they act: ";
       if (std::isfinite(s.slack_stiffness_ratio)) {
         os << "the largest eigenvalue of [sqrt(k_a k_b) g_a^T K_adj^-1 g_b] over them is " << s.slack_stiffness_ratio
            << " (it must be below 1; the original structure's is "
-           << slack_stiffness_ratio(model, s, meshes, offsets, false)
+           << slack_stiffness_ratio(model, s, meshes, offsets, M, K, false)
            << "). The cap softens the modes that carry the links' own stiffness, and a slack link takes all of it "
               "away";
       } else {

@@ -22,8 +22,11 @@ struct JoinedStructure {
   std::vector<int> beams;  // model order; the stacked coordinates follow it
   std::vector<int> links;  // the links between them, model order
   int dof = 0;
-  ModalBasis basis;                     // every mode of K_s Phi = M_s Phi Omega^2 (dense)
-  std::vector<ModalDynamics> original;  // k_j = omega_j^2, c_j = phi_j^T C_s phi_j
+  /// Modes of K_s Phi = M_s Phi Omega^2: every one (dense, up to the dense
+  /// limit) or, beyond it, every one the cap keeps and the first it changes
+  /// (spectrum slicing; basis.complete is false).
+  ModalBasis basis;
+  std::vector<ModalDynamics> original;  // one per basis mode: k_j = omega_j^2, c_j = phi_j^T C_s phi_j
   AdjustedModes adjusted;               // by the beams' (shared) adjustment block
   double k_star = 0.0, c_star = 0.0;    // the members' own part: k* M, c* M
   /// The largest eigenvalue of [sqrt(k_a k_b) g_a^T K_adj^-1 g_b] over the
@@ -43,10 +46,11 @@ class JoinedStructureError : public std::invalid_argument {
 /// The joined structures of `model`: the beams whose active adjustment has
 /// scope 'joined', grouped by the links between them (the parser has checked
 /// that each has a link and that linked beams share the block).
-/// @throws JoinedStructureError if a structure has more than `dense_limit`
-///         DOFs (every mode is needed, by the dense path), its adjusted modes
-///         are not a tail of its spectrum, or its slack links could leave it
-///         without stiffness (slack_stiffness_ratio >= 1); the message names the beams.
+/// Structures above `dense_limit` DOFs are analysed by spectrum slicing.
+/// @throws JoinedStructureError if a structure's cap lies above nearly all its
+///         modes while it is beyond `dense_limit`, its adjusted modes are not
+///         a tail of its spectrum, or its slack links could leave it without
+///         stiffness (slack_stiffness_ratio >= 1); the message names the beams.
 std::vector<JoinedStructure> joined_structures(const ir::Model& model, const BeamModel& beams, int dense_limit);
 
 /// 'contact_wire+messenger' (with the quotes): the names of `beams`.

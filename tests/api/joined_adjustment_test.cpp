@@ -354,6 +354,44 @@ double rms_difference(const std::vector<double>& a, const std::vector<double>& b
   return std::sqrt(sum / static_cast<double>(count));
 }
 
+TEST(JoinedAdjustment, BeyondTheDenseLimitTheSlicedStructureIsTheDenseOne) {
+  // The same structure (161 DOF) analysed with every mode and, with the dense
+  // limit set below it, by spectrum slicing (the modes up to the cap and the
+  // first beyond): the same kept modes, criterion and accelerations.
+  LoadOptions below;
+  below.beams.dense_limit = 100;  // each wire (about 80 DOF) stays dense
+  const std::string text = head_off_the_wires(joined_wires());
+  const Model dense = Model::parse(text, "joined.yaml");
+  const Model sliced = Model::parse(text, "joined.yaml", below);
+  ASSERT_EQ(sliced.assembled().joined().size(), 1u);
+  const runtime::JoinedStructure& d = dense.assembled().joined().front();
+  const runtime::JoinedStructure& s = sliced.assembled().joined().front();
+  EXPECT_TRUE(d.basis.complete);
+  EXPECT_FALSE(s.basis.complete);
+  const int kept = static_cast<int>(d.adjusted.modes.size()) - d.adjusted.adjusted;
+  ASSERT_EQ(s.basis.omega.size(), kept + 1);
+  EXPECT_EQ(s.adjusted.adjusted, 1);
+  // The criterion by the sliced formula (M^-1 / k* plus the kept modes)
+  // against the modal sum over every mode: 6e-16 measured.
+  constexpr double kSameNumberTol = 1e-9;
+  EXPECT_NEAR(s.slack_stiffness_ratio, d.slack_stiffness_ratio, kSameNumberTol);
+  Eigen::VectorXd q, qd, a_dense, a_sliced, l_dense, l_sliced;
+  random_state(dense, q, qd);
+  auto dyn_dense = dense.assembled().make_dynamics(true);
+  auto dyn_sliced = sliced.assembled().make_dynamics(true);
+  dyn_dense->evaluate(0.0, q, qd);
+  dyn_dense->solve_augmented(0.0, a_dense, l_dense);
+  dyn_sliced->evaluate(0.0, q, qd);
+  dyn_sliced->solve_augmented(0.0, a_sliced, l_sliced);
+  // Two eigen-solvers, one operator: as in the dense comparison above.
+  constexpr double kSameOperatorTol = 1e-8;
+  EXPECT_LT((a_sliced - a_dense).cwiseAbs().maxCoeff(), kSameOperatorTol * a_dense.cwiseAbs().maxCoeff());
+  // The refusal holds beyond the dense limit too, with the sliced criterion.
+  const Model refused = Model::parse(test::with_wire_adjustment("{omega_limit: 1000.0, margin: 0.1, scope: joined}"),
+                                     "refused.yaml", below);
+  EXPECT_THROW(refused.assembled().make_dynamics(true), runtime::InvalidInput);
+}
+
 TEST(JoinedAdjustment, CostsAccuracyOnACatenaryWhereEachWireAdjustedAloneDoesNot) {
   // The measurement docs/catenary.md reports: a cap at 1500 rad/s, RK4 at
   // 1.25e-3 s (beyond the original model's RK4 limit, 1.03e-3 s), against
