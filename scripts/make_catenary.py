@@ -25,11 +25,9 @@ The model (docs/catenary.md):
     from below (`slider_spring`, `side: below`, unilateral);
   - a static start: wires, droppers and pantograph in equilibrium at t = 0;
   - the modal adjustment of damping (the table's `adjustment`: cap and the
-    explicit integrator and step it allows) on both wires when each has at
-    most DENSE_MODAL_LIMIT DOFs, with that integrator as the model's default;
-    longer wires are beyond the dense modal analysis the adjusted operators
-    need (docs/catenary.md), and their models run generalized-alpha on the
-    original model.
+    explicit integrator and step it allows) on both wires, with that
+    integrator as the model's default; the simulation line names the
+    original model's implicit run beside it.
 """
 import argparse
 import json
@@ -38,9 +36,6 @@ import os
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-# The largest beam, in free DOFs, whose every mode mbfe computes
-# (BeamAnalysisOptions::dense_limit): the adjusted operators need them.
-DENSE_MODAL_LIMIT = 2000
 
 
 def number(x):
@@ -104,10 +99,8 @@ def model_text(p, spans, kmh, name, table_path):
     w("  - {type: force, body: head, value: [0, %s]}    # the head's weight cancelled" % number(pan["m1"] * g))
     supports = [i * L for i in range(spans + 1)]
     anchor_end = length  # anchors: pinned at both ends of each wire
-    # A wire's free DOFs: w and its slope at every node, less w at the two anchors.
-    wire_dofs = 2 * (elements + 1) - 2
     adj = p.get("adjustment")
-    adjusted = adj is not None and wire_dofs <= DENSE_MODAL_LIMIT
+    adjusted = adj is not None
     w("beams:")
     for wire, props, y in (("messenger", mw, p["encumbrance"]), ("contact_wire", cw, 0.0)):
         area = props["mass_per_length"] / props["density"]
@@ -122,8 +115,6 @@ def model_text(p, spans, kmh, name, table_path):
         w("    damping: {rayleigh: {alpha: %s, beta: %s}}" % (number(alpha), number(beta)))
         if adjusted:
             w("    adjustment: {omega_limit: %s, margin: %s}" % (number(adj["omega_limit"]), number(adj["margin"])))
-        elif adj is not None:
-            w("    # no adjustment: %d DOFs, beyond the dense modal analysis (%d) its operators need" % (wire_dofs, DENSE_MODAL_LIMIT))
         w("    supports:")
         for s in supports:
             if s == 0.0 or s == anchor_end:
