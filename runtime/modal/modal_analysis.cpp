@@ -328,11 +328,14 @@ ModalBasis modal_below(const Eigen::SparseMatrix<double>& M, const Eigen::Sparse
                                 std::to_string(options.stiffness_factor->cols()) + " columns, expected " +
                                 std::to_string(n));
   }
-  const int wanted = eigenvalues_below(M, K, omega_max * omega_max) + 1;
+  // Counted a hair above the bound: a mode within round-off of it is one the
+  // caller may still judge below (by its computed omega), so the mode
+  // returned beyond the bound is clearly beyond it.
+  const int wanted = eigenvalues_below(M, K, omega_max * omega_max * (1.0 + 1e-8)) + 1;
   if (wanted >= n) {
     throw std::invalid_argument("spectrum slicing: " + std::to_string(wanted - 1) + " of the " +
                                 std::to_string(n) + " modes lie below " + std::to_string(omega_max) +
-                                " rad/s; the dense path finds every mode");
+                                " rad/s, nearly every one");
   }
   double edge = options.lower;  // between two eigenvalues; every one below it is found
   if (eigenvalues_below(M, K, edge) != 0) {
@@ -340,7 +343,10 @@ ModalBasis modal_below(const Eigen::SparseMatrix<double>& M, const Eigen::Sparse
                                 " lies above the lowest eigenvalue");
   }
   const int per_run = std::min(options.slice_modes, n - 1);
-  const int ncv = std::min(n, 2 * per_run + 1);
+  // A run whose modes disagree with the inertia count (Lanczos can miss a copy
+  // of a nearly repeated eigenvalue) is repeated once with twice the modes.
+  const int wide_run = std::min(2 * per_run, n - 1);
+  bool widened = false;
   Eigen::VectorXd lambda(wanted);
   Eigen::MatrixXd vectors(n, wanted);
   int found = 0;
@@ -348,9 +354,10 @@ ModalBasis modal_below(const Eigen::SparseMatrix<double>& M, const Eigen::Sparse
   // Each run returns the per_run eigenvalues nearest its shift, i.e. every
   // eigenvalue inside (shift - D, shift + D). A run counts when that window
   // reaches below the edge; its new eigenvalues end at a new edge in the
-  // widest gap of the window's upper third (so a cluster of nearly equal
-  // eigenvalues is never split between runs, whose vectors would then not be
-  // M-orthogonal), and the inertia count between the two edges must agree.
+  // widest gap of the window's upper third (so that a cluster of nearly equal
+  // eigenvalues tends to stay in one run: vectors of a cluster split between
+  // runs are M-orthogonal only to the Ritz tolerance over the cluster's gaps),
+  // and the inertia count between the two edges must agree.
   const int max_runs = 4 * (wanted / per_run + 1) + 20;
   for (int run = 0; found < wanted; ++run) {
     if (run == max_runs) {
@@ -361,13 +368,15 @@ ModalBasis modal_below(const Eigen::SparseMatrix<double>& M, const Eigen::Sparse
     so.shift = shift;
     so.tolerance = options.tolerance;
     so.max_restarts = options.max_restarts;
+    const int nev = widened ? wide_run : per_run;
+    const int ncv = std::min(n, 2 * nev + 1);
     EigenPairs pairs;
     if (options.stiffness_factor && shift <= 0.0) {
       FactorQrShiftInvert op(*options.stiffness_factor, M);
-      pairs = lanczos(op, M, per_run, ncv, so);
+      pairs = lanczos(op, M, nev, ncv, so);
     } else {
       SparseLdltShiftInvert op(K, M);
-      pairs = lanczos(op, M, per_run, ncv, so);
+      pairs = lanczos(op, M, nev, ncv, so);
     }
     const double reach = (pairs.lambda.array() - shift).abs().maxCoeff();
     if (shift - reach >= edge) {  // a gap above the edge: move the shift back
@@ -394,6 +403,10 @@ ModalBasis modal_below(const Eigen::SparseMatrix<double>& M, const Eigen::Sparse
       }
     }
     const int counted = eigenvalues_below(M, K, next_edge) - found;
+    if (counted != take && !widened) {
+      widened = true;
+      continue;
+    }
     if (counted != take) {
       throw std::runtime_error("spectrum slicing: " + std::to_string(counted) + " eigenvalues lie between " +
                                std::to_string(edge) + " and " + std::to_string(next_edge) + ", Lanczos found " +
@@ -406,7 +419,9 @@ ModalBasis modal_below(const Eigen::SparseMatrix<double>& M, const Eigen::Sparse
     // Next shift: ahead of the edge by 0.7 of the half-width this run's
     // density predicts, so the next window overlaps the edge. Eigenvalues of
     // a beam or a string thin out upwards: the prediction errs on the safe side.
-    const double density = std::max(take, 1) / (next_edge - edge);
+    // (A window with no new eigenvalue has its own count for a density.)
+    const double density = take > 0 ? take / (next_edge - edge) : nev / (2.0 * reach);
+    widened = false;
     edge = next_edge;
     shift = edge + 0.7 * (0.5 * per_run) / density;
   }
@@ -441,6 +456,7 @@ ModalBasis modal_analysis(const BeamSystem& beam, const ModalOptions& options) {
   if (options.up_to_omega > 0.0) {
     SlicedModalOptions sliced;
     sliced.lower = shift_below_lowest(beam);
+    sliced.slice_modes = options.slice_modes;
     if (beam.stiffness_factor.size() > 0) sliced.stiffness_factor = &beam.stiffness_factor;
     return modal_below(beam.M, beam.K, options.up_to_omega, sliced);
   }

@@ -77,8 +77,9 @@ struct SlicedModalOptions {
 /// @throws std::invalid_argument on omega_max <= 0, slice_modes < 1, a
 /// lower edge above the lowest eigenvalue, or a bound above all but one mode
 /// (the dense path is the one for that); std::runtime_error if a factorisation
-/// fails, Lanczos does not converge, or a run's modes disagree with the
-/// inertia count.
+/// fails, Lanczos does not converge, a run's modes disagree with the inertia
+/// count twice (the second time with twice the modes), or the runs do not
+/// reach the bound in a few times the runs it should take.
 ModalBasis modal_below(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& K,
                        double omega_max, const SlicedModalOptions& options = {});
 
@@ -88,6 +89,8 @@ struct ModalOptions {
   /// > 0 (rad/s): for a model above dense_limit, every mode up to this and the
   /// first above it (spectrum slicing) instead of num_modes.
   double up_to_omega = 0.0;
+  /// Modes per Lanczos run of the slicing (SlicedModalOptions::slice_modes).
+  int slice_modes = SlicedModalOptions{}.slice_modes;
   /// Models with more DOFs than this use the sparse path (and need
   /// num_modes > 0); smaller ones use the dense path.
   int dense_limit = 2000;
