@@ -23,10 +23,19 @@ BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamA
   mo.num_modes = part.dense ? 0 : std::min(options.sparse_modes, n - 1);
   const ir::Adjustment& adj = beam.adjustment;
   if (!part.dense && options.modes_kept_by_cap && adj.active() && adj.policy == ir::AdjustmentPolicy::kCap &&
-      adj.scope == ir::AdjustmentScope::kBeam && adj.omega_limit > 0.0 &&
-      eigenvalues_below(part.system.M, part.system.K, adj.omega_limit * adj.omega_limit) + 1 < n)
-    mo.up_to_omega = adj.omega_limit;  // a kept mode has |r_fast| <= omega_limit, so omega <= omega_limit
-  part.basis = modal_analysis(part.system, mo);
+      adj.scope == ir::AdjustmentScope::kBeam && adj.omega_limit > 0.0) {
+    // A kept mode has |r_fast| <= omega_limit, so omega <= omega_limit.
+    ModalOptions sliced = mo;
+    sliced.up_to_omega = adj.omega_limit;
+    sliced.slice_modes = options.slice_modes;
+    try {
+      part.basis = modal_analysis(part.system, sliced);
+    } catch (const std::exception& e) {
+      // The original model does not need these modes: it still runs.
+      part.kept_modes_unavailable = e.what();
+    }
+  }
+  if (part.basis.omega.size() == 0) part.basis = modal_analysis(part.system, mo);
   part.original = rayleigh_modes(part.basis.omega, part.system.rayleigh_alpha, part.system.rayleigh_beta);
   part.has_adjustment = beam.adjustment.active();
   try {

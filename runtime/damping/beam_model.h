@@ -5,12 +5,14 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "ir/model.h"
 #include "runtime/damping/beam_ode.h"
 #include "runtime/damping/modal_adjustment.h"
 #include "runtime/fem/beam_system.h"
+#include "runtime/modal/modal_analysis.h"
 #include "runtime/modal/modal_basis.h"
 #include "runtime/modal/state_spectrum.h"
 
@@ -29,6 +31,8 @@ struct BeamAnalysisOptions {
   /// spectrum slicing, instead of sparse_modes: what the low-rank adjusted
   /// operators need (a coupled model's time integration).
   bool modes_kept_by_cap = false;
+  /// Modes per Lanczos run of that slicing (SlicedModalOptions::slice_modes).
+  int slice_modes = ModalOptions{}.slice_modes;
 };
 
 /// One beam: its finite-element system, modes and modal dynamics.
@@ -36,6 +40,10 @@ struct BeamPart {
   BeamSystem system;
   ModalBasis basis;                     // every mode (dense path) or the lowest few (sparse)
   bool dense = true;                    // which modal path gave `basis`
+  /// Why the modes kept by the beam's cap were not computed although asked
+  /// for (options.modes_kept_by_cap): the cap keeps nearly every mode, or the
+  /// slicing failed; the basis is then the lowest sparse_modes. Empty otherwise.
+  std::string kept_modes_unavailable;
   std::vector<ModalDynamics> original;  // Rayleigh, one per mode of `basis`
   AdjustedModes adjusted;               // by the beam's adjustment block; == original without one
   bool has_adjustment = false;          // the beam's adjustment block is active

@@ -62,11 +62,16 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
     if (adjustment_unavailable_.empty() && part.has_adjustment && !part.basis.complete &&
         !(part.adjusted.adjusted > 0 && part.adjusted.change.back() == ModeChange::kAdjusted && part.adjusted.uniform)) {
       adjustment_unavailable_at_ = b.adjustment.loc;
+      std::string why;
+      if (!part.kept_modes_unavailable.empty())
+        why = "the modes its cap keeps could not be found (" + part.kept_modes_unavailable + ")";
+      else if (b.adjustment.policy != ir::AdjustmentPolicy::kCap)
+        why = "its policy needs every mode; beyond that limit only a cap (policy cap) is built, from the modes it keeps";
+      else
+        why = "its " + std::to_string(part.basis.omega.size()) + " lowest modes do not reach its adjustment's limit";
       adjustment_unavailable_ = "beam '" + part.system.name + "' has " + std::to_string(part.system.M.rows()) +
                                 " DOFs, beyond the dense modal analysis (" + std::to_string(options.dense_limit) +
-                                "), and its " + std::to_string(part.basis.omega.size()) +
-                                " lowest modes do not reach its adjustment's limit: the adjusted operators need every mode "
-                                "the cap keeps; run the original model (--adjust off), e.g. with generalized_alpha";
+                                "), and " + why + "; run the original model (--adjust off), e.g. with generalized_alpha";
     }
   }
   if (!model_.links.empty()) {

@@ -139,10 +139,12 @@ JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vec
     for (int b : s.beams) sliced.lower = std::min(sliced.lower, shift_below_lowest(beams.beams[b].system));
     try {
       s.basis = modal_below(M, K, adjustment.omega_limit, sliced);
-    } catch (const std::invalid_argument& e) {
+    } catch (const std::exception& e) {
       throw JoinedStructureError(s.beams.front(), "the joined structure " + name + " has " + std::to_string(s.dof) +
                                                       " DOFs, beyond the dense modal analysis (" +
-                                                      std::to_string(dense_limit) + "): " + e.what());
+                                                      std::to_string(dense_limit) + "), and the modes its cap keeps "
+                                                      "could not be found (" + e.what() +
+                                                      "); run the original model (--adjust off)");
     }
   }
   const int k = static_cast<int>(s.basis.omega.size());

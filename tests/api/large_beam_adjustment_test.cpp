@@ -20,10 +20,14 @@ namespace {
 const std::string kCapBlock = "{omega_limit: 800.0, margin: 0.1}";
 constexpr int kBelowTheWires = 40;  // DOF; each wire has about 80
 
-Model load(int dense_limit) {
+// 10 modes a Lanczos run: several runs per wire, as in a large one.
+constexpr int kSmallRuns = 10;
+
+Model load(int dense_limit, const std::string& cap = kCapBlock) {
   LoadOptions options;
   options.beams.dense_limit = dense_limit;
-  return Model::parse(test::with_wire_adjustment(kCapBlock), "large_beam.yaml", options);
+  options.beams.slice_modes = kSmallRuns;
+  return Model::parse(test::with_wire_adjustment(cap), "large_beam.yaml", options);
 }
 
 TEST(LargeBeamAdjustment, SlicedWiresKeepTheDenseKeptModes) {
@@ -77,6 +81,23 @@ TEST(LargeBeamAdjustment, SlicedWiresGiveTheDenseAccelerations) {
   dyn_original->evaluate(0.0, q, qd);
   dyn_original->solve_augmented(0.0, a_original, l_original);
   EXPECT_GT((a_original - a_dense).cwiseAbs().maxCoeff(), 1e-3 * scale);
+}
+
+TEST(LargeBeamAdjustment, ACapAboveNearlyEveryModeLeavesTheOriginalModelRunning) {
+  // Slicing is for the modes below a cap that keeps some; a cap above nearly
+  // every mode is refused at its block when the adjusted model is asked for.
+  const Model model = load(kBelowTheWires, "{omega_limit: 1.0e6, margin: 0.1}");
+  EXPECT_FALSE(model.assembled().beams().beams[0].kept_modes_unavailable.empty());
+  EXPECT_NO_THROW(model.assembled().make_dynamics(false));
+  try {
+    model.assembled().resolve_adjusted(true);
+    FAIL() << "the adjusted model was accepted";
+  } catch (const runtime::InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("large_beam.yaml:"), std::string::npos) << what;
+    EXPECT_NE(what.find("could not be found"), std::string::npos) << what;
+    EXPECT_NE(what.find("--adjust off"), std::string::npos) << what;
+  }
 }
 
 }  // namespace
