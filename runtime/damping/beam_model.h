@@ -38,7 +38,7 @@ struct BeamAnalysisOptions {
 /// One beam: its finite-element system, modes and modal dynamics.
 struct BeamPart {
   BeamSystem system;
-  ModalBasis basis;                     // every mode (dense path) or the lowest few (sparse)
+  ModalBasis basis;                     // every mode (dense), the modes a cap keeps (sliced) or the lowest few (sparse)
   bool dense = true;                    // which modal path gave `basis`
   /// Why the modes kept by the beam's cap were not computed although asked
   /// for (options.modes_kept_by_cap): the cap keeps nearly every mode, or the
