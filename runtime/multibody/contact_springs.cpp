@@ -7,6 +7,15 @@
 
 namespace mbfe::runtime {
 
+namespace {
+
+/// The element holding s on a beam (s in [0, L]).
+int element_at(const BeamMesh& beam, double s) {
+  return std::clamp(static_cast<int>(std::floor(s / beam.element_length)), 0, beam.num_elements - 1);
+}
+
+}  // namespace
+
 ContactSprings::ContactSprings(const mbfe_model_v1& model, const ContactConstraints& constraints)
     : model_(model), cc_(constraints) {
   for (int c = 0; c < model.num_contacts; ++c)
@@ -17,6 +26,20 @@ ContactSprings::ContactSprings(const mbfe_model_v1& model, const ContactConstrai
 }
 
 std::string ContactSprings::name(int k) const { return cc_.contact_name(contacts_[k]); }
+
+void ContactSprings::columns_read(const double* qb, std::vector<int>& out) const {
+  for (int c : contacts_) {
+    const mbfe_contact_kernels_v1& kern = model_.contacts[c];
+    const BeamMesh& beam = cc_.beams()[kern.beam];
+    const double s = kern.position(qb);
+    if (!(s >= 0.0 && s <= beam.length())) continue;
+    const int element = element_at(beam, s);
+    for (int j = 0; j < 4; ++j) {
+      const int f = beam.full_to_free[2 * element + j];
+      if (f >= 0) out.push_back(cc_.beam_offset(kern.beam) + f);
+    }
+  }
+}
 
 void ContactSprings::apply(const double* qb, const double* qc, const double* qbd, const double* qcd,
                            Eigen::Ref<Eigen::VectorXd> q_force, Eigen::Ref<Eigen::VectorXd> beam_force) {
@@ -31,8 +54,7 @@ void ContactSprings::apply(const double* qb, const double* qc, const double* qbd
     st.s = kern.position(qb);
     st.on_beam = st.s >= 0.0 && st.s <= beam.length();
     if (!st.on_beam) continue;
-    const int element = std::clamp(static_cast<int>(std::floor(st.s / beam.element_length)), 0,
-                                   beam.num_elements - 1);
+    const int element = element_at(beam, st.s);
     const double s0 = element * beam.element_length;
     const int offset = cc_.beam_offset(kern.beam);
     double qe[4], qed[4];

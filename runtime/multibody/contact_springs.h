@@ -66,6 +66,9 @@ class ContactSprings {
   /// forces to q_force (nb entries, the rigid Q) and beam_force (nc entries).
   void apply(const double* qb, const double* qc, const double* qbd, const double* qcd,
              Eigen::Ref<Eigen::VectorXd> q_force, Eigen::Ref<Eigen::VectorXd> beam_force);
+  /// Appends the q_c columns apply() reads at q_b: the free DOFs of the
+  /// element under each spring that is on its beam.
+  void columns_read(const double* qb, std::vector<int>& out) const;
   /// The states of the last apply().
   const std::vector<SpringContactState>& states() const { return states_; }
   /// The gradients of the last apply().

@@ -30,6 +30,11 @@ BeamForceFn dense_beam_force(Eigen::MatrixXd C, Eigen::MatrixXd K);
 struct BeamLowRank {
   Eigen::MatrixXd U;         // n x m, M Phi_L (the kept modes)
   Eigen::VectorXd d_C, d_K;  // m
+  /// Phi_L = M^-1 U by rows (the split coordinates read a few rows at a
+  /// time: coupled_dynamics.h), and the cap's modal damping and stiffness,
+  /// the beam's C = c* M and K = k* M.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> phi_rows;
+  double c_star = 0.0, k_star = 0.0;
 };
 
 /// The low-rank part shared by the beams of a joined structure (beams joined

@@ -106,13 +106,71 @@ CoupledDynamics::CoupledDynamics(const mbfe_model_v1& model, std::vector<Coupled
   h_.resize(m, m);
 }
 
+bool CoupledDynamics::split_low_rank_beams() {
+  if (!split_beam_.empty()) return true;
+  if (cc_.num_rows() > 0 || !joined_.empty()) return false;
+  std::vector<int> index(beams_.size(), -1);
+  int size = 0;
+  for (std::size_t k = 0; k < beams_.size(); ++k) {
+    const BeamLowRank* lr = beams_[k].low_rank.get();
+    if (lr == nullptr || lr->phi_rows.rows() != beams_[k].mesh.num_free || lr->phi_rows.cols() != lr->U.cols() ||
+        lr->d_C.size() != lr->U.cols() || lr->d_K.size() != lr->U.cols())
+      continue;
+    index[k] = static_cast<int>(split_beam_.size());
+    split_beam_.push_back(static_cast<int>(k));
+    split_offset_.push_back(size);
+    size += 2 * static_cast<int>(lr->U.cols());
+    split_minv_p_.push_back(mc_factor_[k]->solve(beams_[k].P));
+    split_phi_p_.push_back(lr->phi_rows.transpose() * beams_[k].P);
+  }
+  if (split_beam_.empty()) return false;
+  split_index_ = std::move(index);
+  split_size_ = size;
+  split_acc_.setZero(size);
+  return true;
+}
+
+void CoupledDynamics::split_to_nodal(int k, const Eigen::Ref<const Eigen::VectorXd>& s, const Eigen::VectorXd& e,
+                                     Eigen::Ref<Eigen::VectorXd> q) const {
+  const BeamLowRank& lr = *beams_[split_beam_[k]].low_rank;
+  const Eigen::Index m = lr.U.cols();
+  const int o = split_offset_[k];
+  q = s;
+  q.noalias() += lr.phi_rows * (e.segment(o, m) - e.segment(o + m, m));
+}
+
+double CoupledDynamics::split_to_nodal(int k, int dof, double s, const Eigen::VectorXd& e) const {
+  const BeamLowRank& lr = *beams_[split_beam_[k]].low_rank;
+  const Eigen::Index m = lr.U.cols();
+  const int o = split_offset_[k];
+  return s + lr.phi_rows.row(dof).dot(e.segment(o, m) - e.segment(o + m, m));
+}
+
+void CoupledDynamics::split_from_nodal(const Eigen::Ref<const Eigen::VectorXd>& qc, Eigen::VectorXd& e) const {
+  e.resize(split_size_);
+  for (std::size_t k = 0; k < split_beam_.size(); ++k) {
+    const int b = split_beam_[k];
+    const BeamLowRank& lr = *beams_[b].low_rank;
+    const Eigen::Index m = lr.U.cols();
+    const int o = split_offset_[k];
+    e.segment(o, m).noalias() = lr.U.transpose() * qc.segment(cc_.beam_offset(b), beams_[b].mesh.num_free);
+    e.segment(o + m, m) = e.segment(o, m);
+  }
+}
+
 void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                               const ConstraintValues* at_q) {
+                               const ConstraintValues* at_q, const SplitState* split) {
   const int n = nb_ + nc_;
   if (q.size() != n || qd.size() != n) {
     std::ostringstream os;
     os << "coupled state has " << q.size() << " / " << qd.size() << " entries, expected " << n
        << " ([q_b; q_c])";
+    throw std::invalid_argument(os.str());
+  }
+  if (split != nullptr && (split_beam_.empty() || split->e.size() != split_size_ || split->ed.size() != split_size_)) {
+    std::ostringstream os;
+    os << "split coordinates: " << split->e.size() << " / " << split->ed.size() << " kept-mode entries, expected "
+       << split_size_ << (split_beam_.empty() ? " (no beam is split)" : "");
     throw std::invalid_argument(os.str());
   }
   const double* qb = q.data();
@@ -124,17 +182,42 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
     qb = q_motion_.data();
     qbd = qd_motion_.data();
   }
+  // The beam coordinates the forces read; with split beams the DOFs they
+  // read are made nodal (the rest keep the uniform part, and nothing reads them).
+  const double* qc = q.data() + nb_;
+  const double* qcd = qd.data() + nb_;
+  if (split != nullptr) {
+    split_qc_ = q.tail(nc_);
+    split_qcd_ = qd.tail(nc_);
+    split_read_.clear();
+    springs_.columns_read(qb, split_read_);
+    for (int k = 0; k < links_.count(); ++k) {
+      const BeamLinks::Gradient& g = links_.gradient(k);
+      split_read_.insert(split_read_.end(), g.cols, g.cols + g.size);
+    }
+    for (int c : split_read_) {
+      for (std::size_t k = 0; k < split_beam_.size(); ++k) {
+        const int off = cc_.beam_offset(split_beam_[k]);
+        if (c < off || c >= off + beams_[split_beam_[k]].mesh.num_free) continue;
+        const int k_ = static_cast<int>(k);
+        split_qc_[c] = split_to_nodal(k_, c - off, q[nb_ + c], split->e);
+        split_qcd_[c] = split_to_nodal(k_, c - off, qd[nb_ + c], split->ed);
+      }
+    }
+    qc = split_qc_.data();
+    qcd = split_qcd_.data();
+  }
   evaluate_dynamics(model_, qb, qbd, t, mb_row_.data(), fb_.data(), qb_force_.data());
   mb_ = mb_row_;
   // Spring contacts load both sides; their beam part joins the time loads below.
   fc_extra_.setZero();
   bool extra = false;
   if (springs_.count() > 0) {
-    springs_.apply(qb, q.data() + nb_, qbd, qd.data() + nb_, qb_force_, fc_extra_);
+    springs_.apply(qb, qc, qbd, qcd, qb_force_, fc_extra_);
     extra = true;
   }
   if (links_.count() > 0) {
-    links_.apply(q.data() + nb_, qd.data() + nb_, fc_extra_);
+    links_.apply(qc, qcd, fc_extra_);
     extra = true;
   }
   rb_ = qb_force_ - fb_;
@@ -153,9 +236,9 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
     cv_.jcol = at_q->jcol;
     cv_.s = at_q->s;
     cv_.element = at_q->element;
-    cc_.evaluate_gamma(qb, q.data() + nb_, qbd, qd.data() + nb_, cv_);
+    cc_.evaluate_gamma(qb, qc, qbd, qcd, cv_);
   } else {
-    cc_.evaluate(t, qb, q.data() + nb_, qbd, qd.data() + nb_, cv_);
+    cc_.evaluate(t, qb, qc, qbd, qcd, cv_);
   }
   for (const CoupledBeam& b : beams_) extra = extra || static_cast<bool>(b.time_loads);
   // Loads that change with time and spring and link forces, per beam.
@@ -174,6 +257,11 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
     const int off = nb_ + cc_.beam_offset(static_cast<int>(k));
     const int nk = beams_[k].mesh.num_free;
     const auto fk = fc_extra_.segment(off - nb_, nk);
+    if (split != nullptr && split_index_[k] >= 0) {
+      split_accelerations(static_cast<int>(k), q.segment(off, nk), qd.segment(off, nk), extra ? fk.data() : nullptr,
+                          *split, ac0_.segment(off - nb_, nk));
+      continue;
+    }
     if (beams_[k].acceleration) {
       beams_[k].acceleration(q.segment(off, nk), qd.segment(off, nk), ac0_.segment(off - nb_, nk));
       if (extra && !fk.isZero(0.0)) {
@@ -246,6 +334,32 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
     }
   }
   cv_.jc_times(ac0_, gc_);
+}
+
+void CoupledDynamics::split_accelerations(int beam, const Eigen::Ref<const Eigen::VectorXd>& s,
+                                          const Eigen::Ref<const Eigen::VectorXd>& sd,
+                                          const double* f, const SplitState& split,
+                                          Eigen::Ref<Eigen::VectorXd> a) {
+  const int k = split_index_[beam];
+  const BeamLowRank& lr = *beams_[beam].low_rank;
+  const Eigen::Index m = lr.U.cols();
+  const int o = split_offset_[k];
+  // s'' = M^-1 (P + f) - c* s' - k* s, and the kept modes' load g = Phi_L^T (P + f)
+  // from the rows of Phi_L where f is not zero (contacts, links, point loads).
+  a = split_minv_p_[k] - lr.c_star * sd - lr.k_star * s;
+  split_g_ = split_phi_p_[k];
+  const Eigen::Map<const Eigen::VectorXd> loads(f, f != nullptr ? s.size() : 0);
+  if (f != nullptr && !loads.isZero(0.0)) {
+    tmp_ = loads;
+    a += mc_factor_[beam]->solve(tmp_);
+    for (Eigen::Index i = 0; i < loads.size(); ++i)
+      if (loads[i] != 0.0) split_g_.noalias() += loads[i] * lr.phi_rows.row(i).transpose();
+  }
+  const auto eta = split.e.segment(o, m), zeta = split.e.segment(o + m, m);
+  const auto etad = split.ed.segment(o, m), zetad = split.ed.segment(o + m, m);
+  split_acc_.segment(o, m) = split_g_ - (lr.c_star + lr.d_C.array()).matrix().cwiseProduct(etad) -
+                             (lr.k_star + lr.d_K.array()).matrix().cwiseProduct(eta);
+  split_acc_.segment(o + m, m) = split_g_ - lr.c_star * zetad - lr.k_star * zeta;
 }
 
 void CoupledDynamics::solve_augmented(double t, Eigen::VectorXd& qdd, Eigen::VectorXd& lambda) {

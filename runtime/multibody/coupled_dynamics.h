@@ -37,6 +37,13 @@ struct ContactReport {
   Eigen::VectorXd qdd;      // accelerations [q_b''; q_c''] at this state
 };
 
+/// The kept-mode coordinates of the beams in split coordinates (see
+/// CoupledDynamics::split_low_rank_beams) and their rates, at one state.
+struct SplitState {
+  const Eigen::VectorXd& e;   // per split beam [eta; zeta] (2 m entries), stacked
+  const Eigen::VectorXd& ed;
+};
+
 /// The shared core: rigid kernels, factored beam mass matrices and the two
 /// acceleration solvers. The model and this object's beams are constant; all
 /// scratch lives in members (one object per simulating thread).
@@ -63,8 +70,40 @@ class CoupledDynamics {
   /// beam-side products a_c0 = M_c^-1 r_c, W = M_c^-1 J_c^T, H = J_c W.
   /// q, qd: n entries ([q_b; q_c]). `at_q`, if given, holds the constraints
   /// evaluated at this q already (without rates): only gamma is added.
+  /// With split beams, `split` is required and the q_c, q_c' of each split
+  /// beam hold its uniform part s, s' (see split_low_rank_beams).
   void evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                const ConstraintValues* at_q = nullptr);
+                const ConstraintValues* at_q = nullptr, const SplitState* split = nullptr);
+
+  /// Split coordinates for the low-rank adjusted beams (docs/damping-adjustment.md,
+  /// "Split coordinates"): such a beam's q = s + Phi_L (eta - zeta), where the
+  /// uniform part s moves as if every mode had the cap,
+  ///   s'' = M^-1 f - c* s' - k* s,
+  /// eta are its kept modes and zeta the kept modes of s,
+  ///   eta''  = Phi_L^T f - (c* + d_C) .* eta' - (k* + d_K) .* eta,
+  ///   zeta'' = Phi_L^T f - c* zeta' - k* zeta,
+  /// f its loads. The forces read q at a few DOFs (contacts, links) and load a
+  /// few, so a right-hand side reads a few rows of Phi_L instead of every
+  /// entry of U and Phi_L; the same ODE, exactly (it keeps zeta = Phi_L^T M s).
+  /// Returns false, changing nothing, for a model with constraint contacts or
+  /// joined structures, or without low-rank beams.
+  bool split_low_rank_beams();
+  /// The split beams (indices into beams()), and where each one's [eta; zeta]
+  /// starts in the stacked kept-mode coordinates.
+  const std::vector<int>& split_beams() const { return split_beam_; }
+  const std::vector<int>& split_offsets() const { return split_offset_; }
+  /// Entries of the stacked kept-mode coordinates (sum of 2 m).
+  int num_split_coordinates() const { return split_size_; }
+  /// After evaluate() with split beams: the kept-mode accelerations [eta''; zeta''], stacked.
+  const Eigen::VectorXd& split_accelerations() const { return split_acc_; }
+  /// The beam coordinates of split beam k (index into split_beams()) at a
+  /// state: q = s + Phi_L (eta - zeta), for rates likewise. Every DOF, or one.
+  void split_to_nodal(int k, const Eigen::Ref<const Eigen::VectorXd>& s, const Eigen::VectorXd& e,
+                      Eigen::Ref<Eigen::VectorXd> q) const;
+  double split_to_nodal(int k, int dof, double s, const Eigen::VectorXd& e) const;
+  /// The stacked kept-mode coordinates [eta; zeta] = [Phi_L^T M q; Phi_L^T M q]
+  /// of nodal beam coordinates q_c (the same for rates).
+  void split_from_nodal(const Eigen::Ref<const Eigen::VectorXd>& qc, Eigen::VectorXd& e) const;
   const ConstraintValues& values() const { return cv_; }
 
   /// After evaluate(): q'' (n) and lambda (m) from the saddle-point system.
@@ -96,6 +135,13 @@ class CoupledDynamics {
   void drive_reactions(const Eigen::VectorXd& qdd, Eigen::VectorXd& out) const;
 
  private:
+  // a (the beam's q_c'' slot) = s'' and the kept-mode accelerations of
+  // split beam `beam` (index into beams_); f: its loads beyond P (s.size()
+  // entries), or null.
+  void split_accelerations(int beam, const Eigen::Ref<const Eigen::VectorXd>& s,
+                           const Eigen::Ref<const Eigen::VectorXd>& sd, const double* f,
+                           const SplitState& split, Eigen::Ref<Eigen::VectorXd> a);
+
   const mbfe_model_v1& model_;
   std::vector<CoupledBeam> beams_;
   std::vector<BodyInertia> bodies_;
@@ -126,6 +172,14 @@ class CoupledDynamics {
   Eigen::MatrixXd p_jv_, p_ju_, p_xju_, p_xh_, p_dir_, p_a_;
   Eigen::VectorXd p_d_, p_rhs_, p_base_, p_b_, p_x_, p_mu_;
   SmallLu p_jv_lu_, p_a_lu_;
+  // Split coordinates (split_low_rank_beams): per beam its index in
+  // split_beam_ or -1, M^-1 P and Phi_L^T P per split beam, the q_c and q_c'
+  // with the DOFs the forces read made nodal, and the columns they read.
+  std::vector<int> split_beam_, split_offset_, split_index_;
+  std::vector<Eigen::VectorXd> split_minv_p_, split_phi_p_;
+  int split_size_ = 0;
+  Eigen::VectorXd split_acc_, split_qc_, split_qcd_, split_g_;
+  std::vector<int> split_read_;
   // M_c^-1 e_k of the beam DOFs that contacts have touched, per beam
   // (computed on first use: a slider visits a few elements, a pin one).
   std::vector<std::vector<Eigen::VectorXd>> minv_col_;

@@ -134,6 +134,9 @@ std::vector<CoupledBeam> coupled_beams(const BeamModel& beams, bool adjusted,
         low_rank->U = na.U;
         low_rank->d_C = na.C.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.C.d;
         low_rank->d_K = na.K.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.K.d;
+        low_rank->phi_rows = na.phi;
+        low_rank->c_star = na.C.s;
+        low_rank->k_star = na.K.s;
         out.back().low_rank = std::move(low_rank);
       }
     }

@@ -13,6 +13,7 @@
 #include "runtime/multibody/coupled_implicit_system.h"
 #include "runtime/multibody/linearization.h"
 #include "runtime/multibody/multibody_errors.h"
+#include "runtime/multibody/split_beam_system.h"
 #include "runtime/simulation/invalid_input.h"
 #include "runtime/simulation/run_diagnosis.h"
 #include "runtime/simulation/runs.h"
@@ -94,7 +95,12 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   const std::vector<BeamProbe> probes = resolve_probes(request.probes, model.ir(), model.beams());
 
   std::unique_ptr<CoupledSystem> system;
-  if (index3) {
+  // Low-rank adjusted beams step in split coordinates when nothing is
+  // partitioned: the same ODE, without passes over their kept modes.
+  const bool split = !index3 && !augmented && adjusted && dynamics->split_low_rank_beams();
+  if (split) {
+    system = std::make_unique<SplitBeamSystem>(dynamics);
+  } else if (index3) {
     try {
       system = std::make_unique<CoupledImplicitSystem>(dynamics);
     } catch (const std::invalid_argument& e) {
@@ -208,7 +214,6 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   double t_prev = 0.0;
   if (springs.count() > 0 || !link_tally.empty()) {
     options.on_step = [&](double t, const Eigen::VectorXd& y) {
-      system->full_state(t, y, q, qd);
       system->report(t, y);  // evaluates the springs and links at this state
       for (int k = 0, i = 0; k < links.count(); ++k) {
         if (!links.can_go_slack(k)) continue;
@@ -236,7 +241,16 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   options.divergence_factor = 1.0e4;
   SimulationReport report;
   report.variant = std::string(adjusted ? "adjusted" : "original") + " damping, " +
-                   (index3 ? "index-3" : augmented ? "augmented" : "partitioned") + " formulation";
+                   (index3 ? "index-3" : augmented ? "augmented" : "partitioned") + " formulation" +
+                   (split ? ", low-rank beams in split coordinates" : "");
+  // The beam DOFs the probes read: with split beams and probes, a row needs
+  // only those nodal (unless the observer reads every coordinate).
+  const bool rows_at_probes = split && !probes.empty() && !request.state_in_rows;
+  std::vector<int> probe_dofs;
+  for (const BeamProbe& p : probes)
+    for (int a = 0; a < 4; ++a)
+      if (p.weights.free_index[a] >= 0) probe_dofs.push_back(p.offset + p.weights.free_index[a]);
+  const Eigen::VectorXd no_coordinates;
   if (adjusted)
     for (const JoinedStructure& s : model.joined())
       report.variant += ", joined structure " + joined_name(model.ir(), s.beams) + " (" +
@@ -248,7 +262,10 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
       if (!row_fault.empty()) return;
       ContactReport contacts;
       try {
-        system->full_state(t, y, q, qd);
+        if (rows_at_probes)
+          system->full_state_at(t, y, probe_dofs, q, qd);
+        else
+          system->full_state(t, y, q, qd);
         contacts = system->report(t, y);
       } catch (const std::runtime_error& e) {
         row_fault = e.what();  // the step after this one fails the same way
@@ -274,7 +291,10 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
         dynamics->drive_reactions(contacts.qdd, reactions);
         for (Eigen::Index i = 0; i < reactions.size(); ++i) values[k++] = reactions[i];
       }
-      observer.row(OutputRow{t, values, q, qd});
+      if (rows_at_probes)
+        observer.row(OutputRow{t, values, no_coordinates, no_coordinates});
+      else
+        observer.row(OutputRow{t, values, q, qd});
     });
   } catch (const std::invalid_argument& e) {
     throw InvalidInput(e.what());

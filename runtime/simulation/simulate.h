@@ -55,9 +55,10 @@ struct SimulationRequest {
   CoupledFormulation formulation = CoupledFormulation::kPartitioned;
   /// Progress line on stderr (when it is a terminal) unless quiet.
   bool quiet = true;
-  /// The observer reads OutputRow::q and qd. Rigid and coupled runs fill them
-  /// anyway; a beam run fills them only when asked, since the modal form spends
-  /// n^2 per row on the nodal coordinates.
+  /// The observer reads OutputRow::q and qd. Rigid runs fill them anyway, and
+  /// so do coupled runs but those with beams in split coordinates and probes;
+  /// those and beam runs fill them only when asked, since the nodal
+  /// coordinates cost a pass over the kept modes (n^2 per row for a beam run).
   bool state_in_rows = false;
   /// Ctrl-C stops the run after the current step (status kInterrupted).
   bool handle_sigint = true;
@@ -78,7 +79,7 @@ struct OutputLayout {
 
 /// One output row: `values` in layout order, and the full state it came from:
 /// q = [q_b; q_c] (rigid coordinates, then every beam's free DOFs) and its rates
-/// (beam models: see SimulationRequest::state_in_rows).
+/// (empty unless asked for in some runs: see SimulationRequest::state_in_rows).
 struct OutputRow {
   double t = 0.0;
   const std::vector<double>& values;

@@ -1,0 +1,176 @@
+// Low-rank adjusted beams in split coordinates (SplitBeamSystem;
+// docs/damping-adjustment.md, "Split coordinates"): the same ODE as the
+// nodal low-rank form the partitioned formulation integrates, so RK4 on both
+// must give the same motion to round-off. The model is the two-span catenary
+// with both wires adjusted, slack droppers, a unilateral contact driven along
+// and a moving load on the messenger: every kind of force the split form
+// reads or applies at a few DOFs.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <random>
+#include <string>
+
+#include "api/mbfe.h"
+#include "runtime/integrators/integrator.h"
+#include "runtime/integrators/integrator_spec.h"
+#include "runtime/multibody/coordinate_partitioning.h"
+#include "runtime/multibody/split_beam_system.h"
+#include "tests/support/recorded_rows.h"
+#include "tests/support/two_span_catenary.h"
+
+namespace mbfe {
+namespace {
+
+// One DOF made nodal alone (a dot product over the kept modes) against the
+// whole matrix-vector product: the same sum in another order, a few ulps of
+// its largest term.
+constexpr double kSummationOrderTol = 1e-13;
+
+// Keeps about half of each wire's modes (about 80 DOF each).
+const std::string kCapBlock = "{omega_limit: 800.0, margin: 0.1}";
+
+Model load() {
+  std::string text = test::with_wire_adjustment(kCapBlock);
+  // A force running along the messenger: a load that changes with time.
+  const std::string anchor = "    tension: 16000\n";
+  text.insert(text.find(anchor) + anchor.size(),
+              "    loads: [{type: moving, value: -300.0, speed: 15.0, start: 0.0, t0: 0.0}]\n");
+  return Model::parse(text, "split_coordinates.yaml");
+}
+
+// A state away from rest, the same for both forms: beam DOFs perturbed (seeded).
+void perturbed_state(const Model& model, int nb, Eigen::VectorXd& q, Eigen::VectorXd& qd) {
+  model.assembled().initial_coordinates(q, qd);
+  std::mt19937 rng(20261123);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = nb; i < q.size(); ++i) {
+    q[i] = 2e-3 * u(rng);
+    qd[i] = 2e-2 * u(rng);
+  }
+}
+
+TEST(SplitCoordinates, RoundTripToNodalCoordinates) {
+  const Model model = load();
+  auto dyn = model.assembled().make_dynamics(true);
+  runtime::SplitBeamSystem split(dyn);
+  ASSERT_EQ(dyn->split_beams().size(), 2u);
+  Eigen::VectorXd q0, qd0, q, qd;
+  perturbed_state(model, dyn->nb(), q0, qd0);
+  dyn->impose_motion(0.0, q0, qd0);
+  const Eigen::VectorXd y = split.initial_state(0.0, q0, qd0);
+  split.full_state(0.0, y, q, qd);
+  // q = s + Phi_L (eta - zeta) with eta = zeta: s itself, exactly.
+  EXPECT_EQ((q - q0).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((qd - qd0).cwiseAbs().maxCoeff(), 0.0);
+  // The listed DOFs of full_state_at are those of full_state, after motion.
+  Eigen::VectorXd y1 = y;
+  y1.segment(dyn->n(), dyn->num_split_coordinates()).setRandom();
+  split.full_state(0.0, y1, q, qd);
+  ASSERT_GT((q - q0).cwiseAbs().maxCoeff(), 0.0) << "eta - zeta moves the nodal coordinates";
+  const std::vector<int> dofs = {3, 17, dyn->nc() - 5};
+  Eigen::VectorXd qa, qda;
+  split.full_state_at(0.0, y1, dofs, qa, qda);
+  const double scale = q.cwiseAbs().maxCoeff(), rate_scale = qd.cwiseAbs().maxCoeff();
+  for (int c : dofs) {
+    EXPECT_NEAR(qa[dyn->nb() + c], q[dyn->nb() + c], kSummationOrderTol * scale) << "DOF " << c;
+    EXPECT_NEAR(qda[dyn->nb() + c], qd[dyn->nb() + c], kSummationOrderTol * rate_scale) << "DOF " << c;
+  }
+  EXPECT_EQ(qa.head(dyn->nb()), q.head(dyn->nb()));
+}
+
+TEST(SplitCoordinates, RungeKuttaFollowsTheNodalLowRankForm) {
+  const Model model = load();
+  auto dyn_nodal = model.assembled().make_dynamics(true);
+  auto dyn_split = model.assembled().make_dynamics(true);
+  runtime::PartitionedSystem nodal(dyn_nodal);
+  runtime::SplitBeamSystem split(dyn_split);
+  Eigen::VectorXd q0, qd0;
+  perturbed_state(model, dyn_nodal->nb(), q0, qd0);
+  dyn_nodal->impose_motion(0.0, q0, qd0);
+  Eigen::VectorXd yn = nodal.initial_state(0.0, q0, qd0);
+  Eigen::VectorXd ys = split.initial_state(0.0, q0, qd0);
+  const runtime::IntegratorSpec rk4 = runtime::parse_integrator("rk4");
+  auto step_nodal = runtime::make_stepper(rk4, nodal);
+  auto step_split = runtime::make_stepper(rk4, split);
+  step_nodal->reset(0.0, yn);
+  step_split->reset(0.0, ys);
+  // Within the adjusted RK4 limit of the two-span wires at this cap.
+  constexpr double kStep = 5e-4;
+  constexpr int kSteps = 400;  // 0.2 s: the head crosses 3 m, the load 3 m
+  // The two forms sum in another order (a few rows of Phi_L against passes
+  // over U and Phi_L) and the contact and droppers switch on those sums:
+  // 4e-12 relative measured over the run; 1e-9 leaves room and still fails
+  // for any wrong term (dropping Phi_L^T f gives 2).
+  constexpr double kSameMotionTol = 1e-9;
+  Eigen::VectorXd qn, qdn, qs, qds;
+  double worst = 0.0, worst_rate = 0.0, max_force = 0.0;
+  int slack_seen = 0;
+  for (int k = 0; k < kSteps; ++k) {
+    const double t = k * kStep;
+    step_nodal->step(t, kStep, yn);
+    step_split->step(t, kStep, ys);
+    nodal.full_state(t + kStep, yn, qn, qdn);
+    split.full_state(t + kStep, ys, qs, qds);
+    const double scale = qn.tail(dyn_nodal->nc()).cwiseAbs().maxCoeff();
+    const double rate_scale = qdn.tail(dyn_nodal->nc()).cwiseAbs().maxCoeff();
+    worst = std::max(worst, (qs - qn).cwiseAbs().maxCoeff() / scale);
+    worst_rate = std::max(worst_rate, (qds - qdn).cwiseAbs().maxCoeff() / rate_scale);
+    nodal.report(t + kStep, yn);
+    split.report(t + kStep, ys);
+    for (int l = 0; l < dyn_nodal->links().count(); ++l) {
+      // A tension is the stiffness times a difference of displacements.
+      EXPECT_NEAR(dyn_split->links().states()[l].tension, dyn_nodal->links().states()[l].tension,
+                  kSameMotionTol * dyn_nodal->links().stiffness(l) * scale)
+          << "link " << l << " at step " << k;
+      slack_seen += dyn_nodal->links().states()[l].slack ? 1 : 0;
+    }
+    max_force = std::max(max_force, dyn_nodal->springs().states()[0].force);
+  }
+  EXPECT_LT(worst, kSameMotionTol);
+  EXPECT_LT(worst_rate, kSameMotionTol);
+  // The run exercises what the split form must get right.
+  EXPECT_GT(slack_seen, 0) << "no dropper went slack";
+  EXPECT_GT(max_force, 0.0) << "the contact never pressed";
+  std::printf("[ split    ] largest relative difference over %d rk4 steps: q %.3g, q' %.3g\n", kSteps, worst,
+              worst_rate);
+}
+
+TEST(SplitCoordinates, SimulateTakesThemAndLeavesRowsWithoutCoordinates) {
+  const Model model = load();
+  runtime::SimulationRequest request;
+  request.integrator = runtime::parse_integrator("rk4");
+  request.step = 5e-4;
+  request.t_end = 0.01;
+  request.static_start = false;
+  request.probes = {runtime::parse_probe("contact_wire@5")};
+  struct Rows : test::RecordedRows {
+    void row(const runtime::OutputRow& row) override {
+      RecordedRows::row(row);
+      coordinates = row.q.size();
+    }
+    Eigen::Index coordinates = -1;
+  } rows;
+  const runtime::SimulationReport report = model.simulate(request, rows);
+  EXPECT_NE(report.variant.find("split coordinates"), std::string::npos) << report.variant;
+  EXPECT_EQ(rows.coordinates, 0) << "a row with probes holds no coordinates unless asked";
+  request.state_in_rows = true;
+  Rows full;
+  model.simulate(request, full);
+  EXPECT_EQ(full.coordinates, model.assembled().make_dynamics(true)->n());
+  // The same probe column either way.
+  const std::vector<double> a = full.series("contact_wire@5"), b = rows.series("contact_wire@5");
+  ASSERT_EQ(a.size(), b.size());
+  const double scale = *std::max_element(a.begin(), a.end());
+  ASSERT_GT(scale, 0.0);
+  for (std::size_t k = 0; k < a.size(); ++k) EXPECT_NEAR(a[k], b[k], kSummationOrderTol * scale) << "row " << k;
+  // The augmented formulation integrates the nodal low-rank form.
+  request.formulation = runtime::CoupledFormulation::kAugmented;
+  Rows augmented;
+  const runtime::SimulationReport nodal = model.simulate(request, augmented);
+  EXPECT_EQ(nodal.variant.find("split coordinates"), std::string::npos) << nodal.variant;
+}
+
+}  // namespace
+}  // namespace mbfe
