@@ -21,7 +21,7 @@ constexpr double kSingularCapacityRcond = 1e-13;
 
 }  // namespace
 
-CoupledImplicitSystem::CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dyn)
+CoupledImplicitSystem::CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dyn, bool modal_blocks)
     : AugmentedSystem(std::move(dyn)), springs_(dyn_->model(), dyn_->constraints()), links_(dyn_->links()) {
   for (const CoupledBeam& b : dyn_->beams()) {
     if (b.mesh.num_free > 0 && (b.C.rows() != b.mesh.num_free || b.K.rows() != b.mesh.num_free)) {
@@ -46,6 +46,20 @@ CoupledImplicitSystem::CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dy
   cb_.resize(nb, nb);
   jac_k_.resize(nb * nb);
   jac_c_.resize(nb * nb);
+  // The block form needs every low-rank beam with its Phi_L by rows, and
+  // nothing that spans beams inside the matrix (contact rows, joined structures).
+  const std::vector<CoupledBeam>& beams = dyn_->beams();
+  const bool any_low_rank = std::any_of(beams.begin(), beams.end(), [](const CoupledBeam& b) { return b.low_rank != nullptr; });
+  const bool all_by_rows = std::all_of(beams.begin(), beams.end(), [](const CoupledBeam& b) {
+    return !b.low_rank || (b.low_rank->phi_rows.rows() == b.mesh.num_free && b.low_rank->phi_rows.cols() == b.low_rank->U.cols());
+  });
+  modal_blocks_ = modal_blocks && any_low_rank && all_by_rows && dyn_->m() == 0 && dyn_->joined().empty();
+  block_mass_.resize(beams.size());
+  for (std::size_t k = 0; modal_blocks_ && k < beams.size(); ++k) {
+    if (!beams[k].low_rank) continue;
+    block_mass_[k] = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(beams[k].M);
+    if (block_mass_[k]->info() != Eigen::Success) modal_blocks_ = false;  // CoupledDynamics reports the mass matrix
+  }
 }
 
 void CoupledImplicitSystem::rigid_residual(double t, const double* qb, const double* vb, const double* ab,
@@ -199,6 +213,7 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
   const ContactConstraints& cc = dyn_->constraints();
   for (std::size_t k = 0; k < beams.size(); ++k) {
     const CoupledBeam& b = beams[k];
+    if (modal_blocks_ && b.low_rank) continue;  // its block: (1 + c_v c* + c_q k*) M with the low rank
     const int off = nb + cc.beam_offset(static_cast<int>(k));
     for (const auto* mat : {&b.M, &b.C, &b.K}) {
       const double scale = mat == &b.M ? 1.0 : (mat == &b.C ? c_v : c_q);
@@ -286,6 +301,27 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
         triplets_.emplace_back(nb + cv_.jcol(r, j), n + r, cv_.je(r, j));
       }
     }
+  }
+  if (modal_blocks_) {
+    std::vector<ModalBlock> blocks;
+    for (std::size_t k = 0; k < beams.size(); ++k) {
+      if (!beams[k].low_rank) continue;
+      const BeamLowRank& lr = *beams[k].low_rank;
+      ModalBlock blk;
+      blk.row = nb + cc.beam_offset(static_cast<int>(k));
+      blk.M = &beams[k].M;
+      blk.mass_factor = block_mass_[k].get();
+      blk.phi = &lr.phi_rows;
+      blk.alpha = 1.0 + c_v * lr.c_star + c_q * lr.k_star;
+      blk.d = c_v * lr.d_C + c_q * lr.d_K;
+      blocks.push_back(std::move(blk));
+    }
+    try {
+      block_solver_.factorize(n, triplets_, std::move(blocks));
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error("implicit step at t = " + std::to_string(t) + " s: " + e.what());
+    }
+    return;
   }
   matrix_.resize(n + m, n + m);
   matrix_.setFromTriplets(triplets_.begin(), triplets_.end());
@@ -380,6 +416,12 @@ void CoupledImplicitSystem::solve(const Eigen::VectorXd& r, const Eigen::VectorX
   rhs_.resize(n + m);
   rhs_.head(n) = r;
   rhs_.tail(m) = c;
+  if (modal_blocks_) {  // m = 0
+    block_solver_.solve(rhs_, sol_);
+    da = sol_;
+    dlambda.resize(0);
+    return;
+  }
   sol_ = lu_.solve(rhs_);
   if (low_rank_z_.cols() > 0) {
     low_rank_s_.noalias() = low_rank_w_.transpose() * sol_;

@@ -14,7 +14,10 @@
 // the whole is one sparse LU. A low-rank adjusted beam (C = c* M + U diag(d_C) U^T,
 // likewise K) puts its sparse part there and its low-rank part into a
 // Woodbury correction of the solves; so does a joined structure, whose
-// low-rank part spans its beams (coupled_beam.h).
+// low-rank part spans its beams (coupled_beam.h). Without contact rows or
+// joined structures, the low-rank beams are instead blocks of known inverse
+// and the Woodbury correction runs over the rows the couplings touch
+// (modal_block_solver.h): far cheaper when the beams keep many modes.
 #pragma once
 
 #include <Eigen/Core>
@@ -27,6 +30,7 @@
 #include "runtime/integrators/second_order_system.h"
 #include "runtime/multibody/augmented_system.h"
 #include "runtime/multibody/contact_springs.h"
+#include "runtime/multibody/modal_block_solver.h"
 
 namespace mbfe::runtime {
 
@@ -34,7 +38,11 @@ class CoupledImplicitSystem final : public AugmentedSystem, public SecondOrderSy
  public:
   /// @throws std::invalid_argument if a beam has no sparse C and K (an
   ///         adjustment that changes every mode on its own, eq (27)).
-  explicit CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dyn);
+  /// `modal_blocks`: take the block form where it applies (false: always the
+  /// Woodbury correction over the kept modes, the cross-check).
+  explicit CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dyn, bool modal_blocks = true);
+  /// Whether the low-rank beams are blocks of known inverse (see above).
+  bool uses_modal_blocks() const { return modal_blocks_; }
 
   int dof() const override { return dyn_->n(); }
   int num_multipliers() const override { return dyn_->m(); }
@@ -90,6 +98,10 @@ class CoupledImplicitSystem final : public AugmentedSystem, public SecondOrderSy
   Eigen::VectorXd low_rank_d_, low_rank_s_, low_rank_r_;
   Eigen::VectorXd joined_x_, joined_v_;
   Eigen::PartialPivLU<Eigen::MatrixXd> capacity_lu_;
+  // The block form: its solver, and each low-rank beam's factored M.
+  bool modal_blocks_ = false;
+  ModalBlockSolver block_solver_;
+  std::vector<std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>> block_mass_;
 };
 
 }  // namespace mbfe::runtime
