@@ -195,13 +195,24 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
       const BeamLinks::Gradient& g = links_.gradient(k);
       split_read_.insert(split_read_.end(), g.cols, g.cols + g.size);
     }
+    // eta - zeta and its rate once per beam; then one row of Phi_L per DOF read.
+    split_delta_.resize(split_size_ / 2);
+    split_delta_rate_.resize(split_size_ / 2);
+    for (std::size_t k = 0; k < split_beam_.size(); ++k) {
+      const Eigen::Index m = beams_[split_beam_[k]].low_rank->U.cols();
+      const int o = split_offset_[k];
+      split_delta_.segment(o / 2, m) = split->e.segment(o, m) - split->e.segment(o + m, m);
+      split_delta_rate_.segment(o / 2, m) = split->ed.segment(o, m) - split->ed.segment(o + m, m);
+    }
     for (int c : split_read_) {
       for (std::size_t k = 0; k < split_beam_.size(); ++k) {
         const int off = cc_.beam_offset(split_beam_[k]);
         if (c < off || c >= off + beams_[split_beam_[k]].mesh.num_free) continue;
-        const int k_ = static_cast<int>(k);
-        split_qc_[c] = split_to_nodal(k_, c - off, q[nb_ + c], split->e);
-        split_qcd_[c] = split_to_nodal(k_, c - off, qd[nb_ + c], split->ed);
+        const BeamLowRank& lr = *beams_[split_beam_[k]].low_rank;
+        const Eigen::Index m = lr.U.cols();
+        const int o = split_offset_[k] / 2;
+        split_qc_[c] = q[nb_ + c] + lr.phi_rows.row(c - off).dot(split_delta_.segment(o, m));
+        split_qcd_[c] = qd[nb_ + c] + lr.phi_rows.row(c - off).dot(split_delta_rate_.segment(o, m));
       }
     }
     qc = split_qc_.data();

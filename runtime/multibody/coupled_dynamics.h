@@ -179,6 +179,7 @@ class CoupledDynamics {
   std::vector<Eigen::VectorXd> split_minv_p_, split_phi_p_;
   int split_size_ = 0;
   Eigen::VectorXd split_acc_, split_qc_, split_qcd_, split_g_;
+  Eigen::VectorXd split_delta_, split_delta_rate_;  // eta - zeta per split beam (m each, stacked), and its rate
   std::vector<int> split_read_;
   // M_c^-1 e_k of the beam DOFs that contacts have touched, per beam
   // (computed on first use: a slider visits a few elements, a pin one).

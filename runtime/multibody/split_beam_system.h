@@ -40,7 +40,12 @@ class SplitBeamSystem : public CoupledSystem {
   void unpack(const Eigen::VectorXd& y);
 
   Partition independent_;  // every rigid coordinate independent (m = 0)
-  Eigen::VectorXd q_, qd_, e_, ed_, qdd_, lambda_;
+  Eigen::VectorXd q_, qd_, e_, ed_, qdd_, lambda_, ydot_;
+  // The last report, valid while no right-hand side has been evaluated since.
+  ContactReport report_;
+  Eigen::VectorXd report_y_;
+  double report_t_ = 0.0;
+  bool report_valid_ = false;
 };
 
 }  // namespace mbfe::runtime
