@@ -11,7 +11,7 @@
 # The two speeds run side by side. Prints, last, "N of 16 quantities inside
 # their ranges" and exits 0 only when all 16 are.
 #
-#   scripts/en50318.sh            (about 23 minutes on 2 cores: four 9,600-DOF runs)
+#   scripts/en50318.sh            (about 4 minutes on 2 cores: four 9,600-DOF runs)
 #
 # The models come from scripts/make_catenary.py and models/catenary/en50318_2002.json.
 set -euo pipefail
