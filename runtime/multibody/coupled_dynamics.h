@@ -70,8 +70,9 @@ class CoupledDynamics {
   /// beam-side products a_c0 = M_c^-1 r_c, W = M_c^-1 J_c^T, H = J_c W.
   /// q, qd: n entries ([q_b; q_c]). `at_q`, if given, holds the constraints
   /// evaluated at this q already (without rates): only gamma is added.
-  /// With split beams, `split` is required and the q_c, q_c' of each split
-  /// beam hold its uniform part s, s' (see split_low_rank_beams).
+  /// `split`: the kept-mode coordinates of a state in split coordinates, whose
+  /// q_c, q_c' then hold each split beam's uniform part s, s' (see
+  /// split_low_rank_beams); without it the state is nodal, split beams or not.
   void evaluate(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                 const ConstraintValues* at_q = nullptr, const SplitState* split = nullptr);
 
