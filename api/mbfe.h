@@ -26,11 +26,11 @@
 #include "runtime/abi/mbfe_model_abi.h"
 #include "runtime/damping/beam_model.h"
 #include "runtime/integrators/integrator.h"
-#include "runtime/multibody/multibody_errors.h"
+#include "runtime/errors/multibody_errors.h"
 #include "runtime/simulation/assembled_model.h"
-#include "runtime/simulation/invalid_input.h"
+#include "runtime/errors/invalid_input.h"
 #include "runtime/simulation/simulate.h"
-#include "runtime/stability/model_spectrum.h"
+#include "runtime/advisor/model_spectrum.h"
 
 namespace mbfe {
 
@@ -111,7 +111,7 @@ class Model {
   /// runtime::SliderOffBeamError when a slider is off its beam.
   Evaluation evaluate(const State& state) const;
 
-  /// The spectrum, original or adjusted (runtime/stability/model_spectrum.h).
+  /// The spectrum, original or adjusted (runtime/advisor/model_spectrum.h).
   /// @throws runtime::InvalidInput (adjusted without an adjustment block, a
   ///         fault at the initial state).
   runtime::ModelSpectrum spectrum(bool adjusted) const;

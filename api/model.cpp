@@ -4,7 +4,7 @@
 #include "api/solver_cache.h"
 #include "frontend/parse_model.h"
 #include "runtime/fem/beam_system.h"
-#include "runtime/multibody/contact_constraints.h"
+#include "runtime/coupled/contact_constraints.h"
 #include "runtime/multibody/rigid_system.h"
 
 namespace mbfe {

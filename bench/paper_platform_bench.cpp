@@ -23,11 +23,11 @@
 #include "api/solver_cache.h"
 #include "runtime/simulation/assembled_model.h"
 #include "runtime/integrators/integrator.h"
-#include "runtime/multibody/augmented_system.h"
-#include "runtime/multibody/coordinate_partitioning.h"
+#include "runtime/coupled/augmented_system.h"
+#include "runtime/coupled/coordinate_partitioning.h"
 #include "runtime/integrators/simulation_driver.h"
 #include "frontend/parse_model.h"
-#include "runtime/multibody/linearization.h"
+#include "runtime/coupled/linearization.h"
 #include "runtime/stability/step_limits.h"
 
 namespace {

@@ -8,10 +8,12 @@
 #   api       <- tool, python, examples            (the public C++ API)
 #   tool      <- nobody                            (the command line)
 #
-# and that the libraries of one layer stay out of the headers of another
-# (yaml-cpp only in frontend/, GiNaC only in generator/, OpenSSL only in
-# frontend/). Prints every violation as file:line: what is wrong, and exits 1
-# if there is one. Run by CTest (test `architecture_layers`) and by hand.
+# inside the runtime, folder by folder (each is a library of its own; see
+# runtime_allowed_for below, lowest first), and that the libraries of one layer
+# stay out of the headers of another (yaml-cpp only in frontend/, GiNaC only
+# in generator/, OpenSSL only in frontend/). Prints every violation as
+# file:line: what is wrong, and exits 1 if there is one. Run by CTest (test
+# `architecture_layers`) and by hand.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -28,6 +30,26 @@ allowed_for() {
     examples) echo "ir frontend generator runtime api examples" ;;
     bench) echo "ir frontend generator runtime api tests bench" ;;
     tests) echo "ir frontend generator runtime api tests" ;;
+  esac
+}
+# Runtime folder -> the runtime folders its files may include (itself first).
+runtime_allowed_for() {
+  case "$1" in
+    errors) echo "errors" ;;
+    abi) echo "abi" ;;
+    linalg) echo "linalg errors" ;;
+    fem) echo "fem errors" ;;
+    integrators) echo "integrators errors" ;;
+    signal) echo "signal errors" ;;
+    modal) echo "modal fem errors" ;;
+    stability) echo "stability integrators modal errors" ;;
+    damping) echo "damping modal fem integrators errors" ;;
+    structure) echo "structure damping modal fem integrators linalg errors" ;;
+    multibody) echo "multibody abi integrators linalg errors" ;;
+    coupled) echo "coupled multibody structure damping modal fem integrators linalg stability abi errors" ;;
+    simulation) echo "simulation coupled multibody structure damping modal fem integrators linalg stability signal abi errors" ;;
+    advisor) echo "advisor simulation coupled multibody structure damping modal fem integrators linalg stability abi errors" ;;
+    *) echo "" ;;
   esac
 }
 # Third-party headers (<prefix/...>) a layer must not include.
@@ -58,6 +80,14 @@ while IFS= read -r file; do
       if [[ " $allowed " != *" $target "* ]]; then
         echo "$file:$line: $layer/ must not include $target/ ($text)"
         violations=$((violations + 1))
+      elif [[ $layer == runtime && $target == runtime && $text =~ \"runtime/([^\"/]+)/ ]]; then
+        from=${file#runtime/}
+        from=${from%%/*}
+        to=${BASH_REMATCH[1]}
+        if [[ " $(runtime_allowed_for "$from") " != *" $to "* ]]; then
+          echo "$file:$line: runtime/$from/ must not include runtime/$to/ ($text)"
+          violations=$((violations + 1))
+        fi
       fi
     elif [[ $text =~ \#include[[:space:]]*\<([^/\>]+)/ ]]; then
       target=${BASH_REMATCH[1]}

@@ -11,7 +11,7 @@
 #include "api/mbfe.h"
 #include "frontend/parse_model.h"
 #include "runtime/damping/beam_model.h"
-#include "runtime/simulation/invalid_input.h"
+#include "runtime/errors/invalid_input.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "tool/linearization_notice.h"
@@ -120,7 +120,7 @@ int cmd_modal(const Args& args) {
   if (step && !(*step > 0)) throw UsageError("--step must be > 0 s");
   if (step && !parsed.has("plot")) throw UsageError("--step goes with --plot FILE.png");
   // A coupled model (bodies + beams): also the linearised, partitioned system
-  // at the initial state (runtime/multibody/linearization.h), original and adjusted.
+  // at the initial state (runtime/coupled/linearization.h), original and adjusted.
   bool coupled = !m.bodies.empty() && !beam_name;
   runtime::ModelSpectrum coupled_original_model, coupled_adjusted_model;
   bool coupled_any_adjustment = false;

@@ -9,7 +9,7 @@
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "ir/model_error.h"
-#include "runtime/simulation/invalid_input.h"
+#include "runtime/errors/invalid_input.h"
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "runtime/multibody/driven_coordinates.h"
-#include "runtime/multibody/multibody_errors.h"
+#include "runtime/errors/multibody_errors.h"
 
 namespace mbfe::runtime {
 

@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "runtime/simulation/coupled_beams.h"
-#include "runtime/simulation/invalid_input.h"
+#include "runtime/structure/coupled_beams.h"
+#include "runtime/errors/invalid_input.h"
 
 namespace mbfe::runtime {
 

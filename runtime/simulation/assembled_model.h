@@ -15,10 +15,10 @@
 #include "ir/model.h"
 #include "runtime/abi/mbfe_model_abi.h"
 #include "runtime/damping/beam_model.h"
-#include "runtime/multibody/coupled_dynamics.h"
+#include "runtime/coupled/coupled_dynamics.h"
 #include "runtime/multibody/rigid_system.h"
-#include "runtime/simulation/joined_structures.h"
-#include "runtime/simulation/link_form_finding.h"
+#include "runtime/structure/joined_structures.h"
+#include "runtime/structure/link_form_finding.h"
 
 namespace mbfe::runtime {
 
@@ -69,7 +69,7 @@ class AssembledModel {
   const LinkFormFinding& links() const { return links_; }
 
   /// The joined structures of a coupled model (beams adjusted together,
-  /// runtime/simulation/joined_structures.h); empty without scope 'joined'.
+  /// runtime/structure/joined_structures.h); empty without scope 'joined'.
   const std::vector<JoinedStructure>& joined() const { return joined_; }
 
  private:

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "runtime/simulation/invalid_input.h"
+#include "runtime/errors/invalid_input.h"
 
 namespace mbfe::runtime {
 

@@ -3,7 +3,7 @@
 // one, see runtime/damping/beam_ode.h), original or adjusted; rows are written
 // in nodal coordinates: t, then the beam coordinates in contract order
 // (<beam>_w<node>, <beam>_dw<node>, free DOFs only), or the probe columns.
-#include "runtime/simulation/invalid_input.h"
+#include "runtime/errors/invalid_input.h"
 #include "runtime/simulation/run_diagnosis.h"
 #include "runtime/simulation/runs.h"
 

@@ -8,13 +8,13 @@
 #include <memory>
 #include <sstream>
 
-#include "runtime/multibody/augmented_system.h"
-#include "runtime/multibody/coordinate_partitioning.h"
-#include "runtime/multibody/coupled_implicit_system.h"
-#include "runtime/multibody/linearization.h"
-#include "runtime/multibody/multibody_errors.h"
-#include "runtime/multibody/split_beam_system.h"
-#include "runtime/simulation/invalid_input.h"
+#include "runtime/coupled/augmented_system.h"
+#include "runtime/coupled/coordinate_partitioning.h"
+#include "runtime/coupled/coupled_implicit_system.h"
+#include "runtime/coupled/linearization.h"
+#include "runtime/errors/multibody_errors.h"
+#include "runtime/coupled/split_beam_system.h"
+#include "runtime/errors/invalid_input.h"
 #include "runtime/simulation/run_diagnosis.h"
 #include "runtime/simulation/runs.h"
 #include "runtime/simulation/static_start.h"

@@ -1,6 +1,6 @@
 // simulate() for a model of bodies only: y = [q; q'], y' = [q'; M^-1 (Q - F)].
 #include "runtime/multibody/rigid_system.h"
-#include "runtime/simulation/invalid_input.h"
+#include "runtime/errors/invalid_input.h"
 #include "runtime/simulation/run_diagnosis.h"
 #include "runtime/simulation/runs.h"
 #include "runtime/simulation/static_start.h"

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "runtime/simulation/invalid_input.h"
+#include "runtime/errors/invalid_input.h"
 #include "runtime/simulation/runs.h"
 
 namespace mbfe::runtime {

@@ -29,7 +29,7 @@
 
 #include "runtime/integrators/integrator.h"
 #include "runtime/integrators/simulation_driver.h"
-#include "runtime/multibody/contact_springs.h"
+#include "runtime/coupled/contact_springs.h"
 #include "runtime/simulation/assembled_model.h"
 #include "runtime/simulation/beam_probes.h"
 

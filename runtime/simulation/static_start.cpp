@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "ir/model_error.h"
-#include "runtime/multibody/coupled_implicit_system.h"
+#include "runtime/coupled/coupled_implicit_system.h"
 
 namespace mbfe::runtime {
 

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "ir/model.h"
-#include "runtime/multibody/coupled_dynamics.h"
+#include "runtime/coupled/coupled_dynamics.h"
 #include "runtime/multibody/rigid_system.h"
 
 namespace mbfe::runtime {

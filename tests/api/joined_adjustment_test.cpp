@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "api/mbfe.h"
-#include "runtime/multibody/coupled_implicit_system.h"
+#include "runtime/coupled/coupled_implicit_system.h"
 #include "runtime/simulation/static_start.h"
 #include "tests/support/recorded_rows.h"
 #include "tests/support/two_span_catenary.h"

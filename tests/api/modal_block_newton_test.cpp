@@ -11,7 +11,7 @@
 #include <string>
 
 #include "api/mbfe.h"
-#include "runtime/multibody/coupled_implicit_system.h"
+#include "runtime/coupled/coupled_implicit_system.h"
 #include "tests/support/two_span_catenary.h"
 
 namespace mbfe {

@@ -15,8 +15,8 @@
 #include "api/mbfe.h"
 #include "runtime/integrators/integrator.h"
 #include "runtime/integrators/integrator_spec.h"
-#include "runtime/multibody/coordinate_partitioning.h"
-#include "runtime/multibody/split_beam_system.h"
+#include "runtime/coupled/coordinate_partitioning.h"
+#include "runtime/coupled/split_beam_system.h"
 #include "tests/support/recorded_rows.h"
 #include "tests/support/two_span_catenary.h"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "runtime/multibody/multibody_errors.h"
+#include "runtime/errors/multibody_errors.h"
 #include "tests/reference/double_pendulum.h"
 #include "tests/reference/double_pendulum_beam.h"
 

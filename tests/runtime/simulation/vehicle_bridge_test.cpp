@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "api/mbfe.h"
-#include "runtime/multibody/coupled_dynamics.h"
+#include "runtime/coupled/coupled_dynamics.h"
 
 namespace mbfe {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "runtime/integrators/integrator.h"
 #include "tests/runtime/integrators/test_systems.h"
-#include "runtime/multibody/linearization.h"
+#include "runtime/coupled/linearization.h"
 #include "runtime/stability/step_limits.h"
 
 namespace mbfe::runtime {

@@ -1,0 +1,103 @@
+#include "runtime/advisor/model_spectrum.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "runtime/coupled/linearization.h"
+#include "runtime/errors/multibody_errors.h"
+#include "runtime/errors/invalid_input.h"
+#include "runtime/simulation/static_start.h"
+
+namespace mbfe::runtime {
+
+namespace {
+
+ModelSpectrum from_linearization(const StateSpectrum& full, int coordinates) {
+  ModelSpectrum out;
+  out.full = full;
+  const SplitSpectrum split = split_growing(full);
+  out.limiting = split.limiting;
+  out.growing = split.growing;
+  out.coordinates = coordinates;
+  out.linearized = true;
+  return out;
+}
+
+}  // namespace
+
+ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
+  adjusted = model.resolve_adjusted(adjusted);
+  // Linearised where a run starts: the static equilibrium when the model asks for it.
+  const bool static_start = model.ir().initial.static_start;
+  Eigen::VectorXd q0, qd0;
+  model.initial_coordinates(q0, qd0);
+  try {
+    switch (model.kind()) {
+      case ModelKind::kBeams: {
+        ModelSpectrum out;
+        out.full = adjusted ? model.beams().adjusted : model.beams().original;
+        out.limiting = out.full;
+        out.coordinates = model.beams().dof;
+        return out;
+      }
+      case ModelKind::kRigid: {
+        RigidSystem system(*model.kernels(), model.bodies());
+        const int n = system.num_coordinates();
+        Eigen::VectorXd y0(2 * n);
+        y0 << q0, qd0;
+        system.impose_motion(0.0, y0);
+        if (static_start) rigid_static_state(model.ir(), system, y0);
+        ModelSpectrum at_start = from_linearization(linearized_spectrum(system, 0.0, y0), n);
+        if (static_start || at_start.growing == 0) return at_start;
+        // Not an equilibrium: the motion swings about the nearest one.
+        Eigen::VectorXd equilibrium = y0;
+        double omega_min = 0.0, omega_max = 0.0;
+        for (const auto& l : at_start.full.eigenvalues) {
+          const double w = std::abs(l);
+          if (w == 0.0) continue;
+          omega_min = omega_min == 0.0 ? w : std::min(omega_min, w);
+          omega_max = std::max(omega_max, w);
+        }
+        // None (a mechanism, a free body): the local estimate is all there is.
+        if (!rigid_settled_state(model.ir(), system, omega_min, omega_max, equilibrium)) return at_start;
+        ModelSpectrum out = from_linearization(linearized_spectrum(system, 0.0, equilibrium), n);
+        if (out.growing > 0) return at_start;  // an unstable equilibrium (inverted pendulum) tells less
+        out.at_equilibrium = true;
+        out.growing_at_start = at_start.growing;
+        return out;
+      }
+      case ModelKind::kCoupled: {
+        const int n_coupled = static_cast<int>(model.ir().bodies.size()) + model.beams().dof;
+        if (n_coupled > kMaxLinearizedCoordinates)
+          throw InvalidInput(model.ir().source_path + ": the coupled system has " + std::to_string(n_coupled) +
+                             " coordinates; its linearisation is a dense eigenproblem and handles at most " +
+                             std::to_string(kMaxLinearizedCoordinates) +
+                             " (each beam's own spectrum: mbfe modal; runs: an implicit integrator needs no limit)");
+        const std::shared_ptr<CoupledDynamics> dynamics = model.make_dynamics(adjusted);
+        dynamics->impose_motion(0.0, q0, qd0);
+        if (static_start) coupled_static_state(model.ir(), *dynamics, q0, qd0);
+        const StateSpectrum full = linearized_spectrum(dynamics, 0.0, q0, qd0);
+        return from_linearization(full, static_cast<int>(full.eigenvalues.size()) / 2);
+      }
+    }
+  } catch (const ContactError& e) {
+    throw InvalidInput(model.ir().source_path + ": at the initial state: " + e.what());
+  } catch (const SingularMassMatrixError& e) {
+    throw InvalidInput(model.ir().source_path + ": at the initial state: " + e.what());
+  }
+  throw InvalidInput("unknown kind of model");
+}
+
+std::vector<StepLimitRow> step_limit_table(const ModelSpectrum& original, const ModelSpectrum* adjusted) {
+  std::vector<StepLimitRow> rows;
+  for (const IntegratorSpec& integrator : advisor_integrators()) {
+    StepLimitRow row;
+    row.integrator = integrator;
+    row.original = stable_step(integrator, original.limiting.eigenvalues);
+    if (adjusted) row.adjusted = stable_step(integrator, adjusted->limiting.eigenvalues);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace mbfe::runtime
