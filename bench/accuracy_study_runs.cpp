@@ -13,6 +13,8 @@
 
 #include "frontend/parse_model.h"
 #include "runtime/damping/beam_ode.h"
+#include "runtime/structure/adjusted_parts.h"
+#include "runtime/structure/nodal_beam_ode.h"
 #include "runtime/fem/beam_system.h"
 #include "runtime/integrators/integrator.h"
 #include "runtime/integrators/simulation_driver.h"
@@ -61,8 +63,9 @@ RunResult run_fixed(const Setup& s, const std::vector<runtime::ModalDynamics>& m
       ode = std::make_unique<runtime::NodalBeamOde>(b.system.M, b.system.K, b.system.C, b.system.P);
     } else {
       const runtime::AdjustedModes& am = &modes == &s.cap_floor ? s.adj_floor : s.adj_nofloor;
-      ode = std::make_unique<runtime::NodalBeamOde>(b.system.M, runtime::low_rank_adjusted(b.system.M, b.basis, am),
-                                                    b.system.P);
+      ode = std::make_unique<runtime::NodalBeamOde>(std::make_shared<const runtime::LowRankStructure>(runtime::adjusted_parts(
+                                                        b.system.name, {{0, static_cast<int>(b.system.M.rows())}},
+                                                        b.system.M, b.system.K, b.system.P, b.basis, am)));
     }
     const runtime::BeamPointWeights pw = runtime::point_weights(b.system, 0.5 * b.system.length);
     weights = Eigen::VectorXd::Zero(ode->dof());

@@ -14,6 +14,8 @@
 
 #include "runtime/damping/beam_model.h"
 #include "runtime/damping/beam_ode.h"
+#include "runtime/structure/adjusted_parts.h"
+#include "runtime/structure/nodal_beam_ode.h"
 #include "runtime/integrators/integrator.h"
 #include "runtime/integrators/simulation_driver.h"
 #include "frontend/parse_model.h"
@@ -57,7 +59,9 @@ BENCHMARK(BM_AdjustedBeamModal)->Unit(benchmark::kMillisecond);
 
 void BM_AdjustedBeamNodalLowRank(benchmark::State& state) {
   const auto& p = paper().beams.at(0);
-  runtime::NodalBeamOde ode(p.system.M, runtime::low_rank_adjusted(p.system.M, p.basis, p.adjusted), p.system.P);
+  runtime::NodalBeamOde ode(std::make_shared<const runtime::LowRankStructure>(runtime::adjusted_parts(
+                                p.system.name, {{0, static_cast<int>(p.system.M.rows())}}, p.system.M, p.system.K,
+                                p.system.P, p.basis, p.adjusted)));
   state.counters["kept_modes"] = static_cast<double>(p.basis.omega.size() - p.adjusted.adjusted);
   run(state, ode, 1.4e-5, 1.0);
 }

@@ -24,7 +24,7 @@ void AugmentedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& y
 }
 
 std::string AugmentedSystem::name(int i) const {
-  const std::vector<std::string> names = coupled_coordinate_names(*dyn_);
+  const std::vector<std::string> names = dyn_->model().coordinate_names();
   const int n = dyn_->n();
   return i < n ? names[i] : names[i - n] + "_dot";
 }

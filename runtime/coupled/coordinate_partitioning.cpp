@@ -37,7 +37,7 @@ PartitionedSystem::PartitionedSystem(std::shared_ptr<CoupledDynamics> dyn, Parti
   const int nb = dyn_->nb(), m = dyn_->m();
   if (m > nb) {
     std::ostringstream os;
-    os << "model '" << dyn_->model().model_name << "': " << m
+    os << "model '" << dyn_->kernels().model_name << "': " << m
        << " constraint rows but only " << nb
        << " rigid coordinates to take the dependent ones from";
     throw std::invalid_argument(os.str());
@@ -207,7 +207,7 @@ void PartitionedSystem::after_step(double t, Eigen::VectorXd& y) {
 }
 
 std::string PartitionedSystem::name(int i) const {
-  const std::vector<std::string> names = coupled_coordinate_names(*dyn_);
+  const std::vector<std::string> names = dyn_->model().coordinate_names();
   const int k = i % nz_;
   const std::string base = k < nu_ ? names[part_.independent[k]] : names[dyn_->nb() + k - nu_];
   return i < nz_ ? base : base + "_dot";

@@ -15,29 +15,23 @@ namespace {
 // Jacobian kernel: the cube root of machine epsilon balances truncation
 // (h^2) against round-off (eps / h), relative to the coordinate's size.
 constexpr double kDifferenceStep = 6e-6;
-// The Woodbury capacity matrix I + D W^T B^-1 W is taken as singular below this
-// reciprocal condition number (Eigen's 1-norm estimate; a margin of ~1e3 ulps).
-constexpr double kSingularCapacityRcond = 1e-13;
 
 }  // namespace
 
 CoupledImplicitSystem::CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dyn, bool modal_blocks)
-    : AugmentedSystem(std::move(dyn)), springs_(dyn_->model(), dyn_->constraints()), links_(dyn_->links()) {
-  for (const CoupledBeam& b : dyn_->beams()) {
-    if (b.mesh.num_free > 0 && (b.C.rows() != b.mesh.num_free || b.K.rows() != b.mesh.num_free)) {
-      throw std::invalid_argument("beam '" + b.mesh.name +
+    : AugmentedSystem(std::move(dyn)), model_(dyn_->model()) {
+  for (const auto& s : model_.structures()) {
+    if (s->every_mode()) {
+      throw std::invalid_argument("beam '" + s->name() +
                                   "': the implicit integrators take a beam's sparse C and K, with a low-rank part "
                                   "for the adjustment's cap; this adjustment changes every mode on its own (policy "
                                   "keep_slow or paper_eq25): run it explicitly, or with --adjust off");
     }
   }
-  const int nb = dyn_->nb(), nc = dyn_->nc();
-  is_driven_.assign(nb, false);
-  for (int d : dyn_->driven()) is_driven_[d] = true;
-  const int nd = static_cast<int>(dyn_->driven().size());
-  motion_q_.resize(nd);
-  motion_v_.resize(nd);
-  motion_a_.resize(nd);
+  const int nb = model_.nb(), nc = model_.nc();
+  for (const auto& f : model_.forces()) states_.push_back(f->make_state());
+  for (const auto& s : model_.structures()) structure_ws_.push_back(s->make_workspace());
+  motion_ = model_.driven().make_motion();
   mb_row_.resize(nb, nb);
   fb_.resize(nb);
   qb_force_.resize(nb);
@@ -46,87 +40,67 @@ CoupledImplicitSystem::CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dy
   cb_.resize(nb, nb);
   jac_k_.resize(nb * nb);
   jac_c_.resize(nb * nb);
-  // The block form needs every low-rank beam with its Phi_L by rows, and
-  // nothing that spans beams inside the matrix (contact rows, joined structures).
-  const std::vector<CoupledBeam>& beams = dyn_->beams();
-  const bool any_low_rank = std::any_of(beams.begin(), beams.end(), [](const CoupledBeam& b) { return b.low_rank != nullptr; });
-  const bool all_by_rows = std::all_of(beams.begin(), beams.end(), [](const CoupledBeam& b) {
-    return !b.low_rank || (b.low_rank->phi_rows.rows() == b.mesh.num_free && b.low_rank->phi_rows.cols() == b.low_rank->U.cols());
-  });
-  modal_blocks_ = modal_blocks && any_low_rank && all_by_rows && dyn_->m() == 0 && dyn_->joined().empty();
-  block_mass_.resize(beams.size());
-  for (std::size_t k = 0; modal_blocks_ && k < beams.size(); ++k) {
-    if (!beams[k].low_rank) continue;
-    block_mass_[k] = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(beams[k].M);
-    if (block_mass_[k]->info() != Eigen::Success) modal_blocks_ = false;  // CoupledDynamics reports the mass matrix
-  }
+  // The block form needs every adjusted structure to be one beam's, and
+  // nothing that spans beams inside the matrix (contact rows).
+  bool single = true;
+  for (const auto& s : model_.structures()) single = single && s->ranges().size() == 1;
+  modal_blocks_ = modal_blocks && !model_.structures().empty() && single && model_.m() == 0;
 }
 
 void CoupledImplicitSystem::rigid_residual(double t, const double* qb, const double* vb, const double* ab,
                                            Eigen::VectorXd& tau) {
-  const int nb = dyn_->nb();
-  evaluate_dynamics(dyn_->model(), qb, vb, t, mb_row_.data(), fb_.data(), qb_force_.data());
+  const int nb = model_.nb();
+  evaluate_dynamics(model_.kernels(), qb, vb, t, mb_row_.data(), fb_.data(), qb_force_.data());
   tau = mb_row_ * Eigen::Map<const Eigen::VectorXd>(ab, nb) + fb_ - qb_force_;
+}
+
+void CoupledImplicitSystem::element_forces(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+  const int nb = model_.nb();
+  fc_.setZero();
+  const ForceArgs args{t, q.data(), v.data(), q.data() + nb, v.data() + nb};
+  ForceSink sink{qb_force_.data(), fc_.data()};
+  const auto& forces = model_.forces();
+  for (std::size_t e = 0; e < forces.size(); ++e) forces[e]->add_force(args, *states_[e], sink);
 }
 
 void CoupledImplicitSystem::residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                      const Eigen::VectorXd& a, const Eigen::VectorXd& lambda, double c_q,
                                      Eigen::VectorXd& r, Eigen::VectorXd& c) {
-  const int nb = dyn_->nb(), n = dyn_->n(), m = dyn_->m();
+  const int nb = model_.nb(), n = model_.n(), m = model_.m();
   qm_ = q;
   vm_ = v;
-  dyn_->impose_motion(t, qm_, vm_);
+  model_.driven().impose(t, qm_.data(), vm_.data(), motion_);
   r.resize(n);
   Eigen::Ref<Eigen::VectorXd> rb = r.head(nb);
   Eigen::Ref<Eigen::VectorXd> rc = r.tail(n - nb);
-  // Rigid: M_b a + F_b - Q_b, spring forces in Q_b.
-  evaluate_dynamics(dyn_->model(), qm_.data(), vm_.data(), t, mb_row_.data(), fb_.data(), qb_force_.data());
-  fc_.setZero();
-  if (springs_.count() > 0)
-    springs_.apply(qm_.data(), qm_.data() + nb, vm_.data(), vm_.data() + nb, qb_force_, fc_);
-  if (links_.count() > 0) links_.apply(q.data() + nb, v.data() + nb, fc_);
+  // Rigid: M_b a + F_b - Q_b - f_b.
+  evaluate_dynamics(model_.kernels(), qm_.data(), vm_.data(), t, mb_row_.data(), fb_.data(), qb_force_.data());
+  element_forces(t, qm_, vm_);
   rb.noalias() = mb_row_ * a.head(nb);
   rb += fb_ - qb_force_;
-  // Beams: M_c a + C v + K q - P - (time loads, springs).
-  const std::vector<CoupledBeam>& beams = dyn_->beams();
-  const ContactConstraints& cc = dyn_->constraints();
-  for (std::size_t k = 0; k < beams.size(); ++k) {
-    const CoupledBeam& b = beams[k];
-    const int off = cc.beam_offset(static_cast<int>(k));
-    const int nk = b.mesh.num_free;
+  // Beams of their own: M_c a + C v + K q - P - f_c.
+  for (const CoupledBeam& b : model_.beams()) {
+    if (b.structure >= 0) continue;
+    const int off = b.offset, nk = b.mesh.num_free;
     Eigen::Ref<Eigen::VectorXd> rk = rc.segment(off, nk);
     rk.noalias() = b.M * a.segment(nb + off, nk);
     rk.noalias() += b.C * v.segment(nb + off, nk);
     rk.noalias() += b.K * q.segment(nb + off, nk);
-    if (b.low_rank) {
-      const BeamLowRank& lr = *b.low_rank;
-      low_rank_r_.noalias() = lr.d_C.cwiseProduct(lr.U.transpose() * v.segment(nb + off, nk));
-      low_rank_r_.noalias() += lr.d_K.cwiseProduct(lr.U.transpose() * q.segment(nb + off, nk));
-      rk.noalias() += lr.U * low_rank_r_;
-    }
     rk -= b.P + fc_.segment(off, nk);
-    if (b.time_loads) {
-      b.time_loads(t, nodal_);
-      for (const NodalForce& f : nodal_) rk[f.index] -= f.value;
-    }
   }
-  // Joined structures: U (d_C .* U^T v + d_K .* U^T q) over their stacked beams.
-  for (const auto& js : dyn_->joined()) {
-    stack_joined(*js, v, joined_v_);
-    stack_joined(*js, q, joined_x_);
-    low_rank_r_.noalias() = js->d_C.cwiseProduct(js->U.transpose() * joined_v_);
-    low_rank_r_.noalias() += js->d_K.cwiseProduct(js->U.transpose() * joined_x_);
-    Eigen::Index row = 0;
-    for (int b : js->beams) {
-      const int nk = beams[b].mesh.num_free;
-      rc.segment(cc.beam_offset(b), nk).noalias() += js->U.middleRows(row, nk) * low_rank_r_;
-      row += nk;
-    }
+  // Adjusted structures: M_adj a + C_adj v + K_adj q - P - f_c over their ranges.
+  const auto& structures = model_.structures();
+  for (std::size_t s = 0; s < structures.size(); ++s) {
+    for (const LowRankStructure::Range& range : structures[s]->ranges())
+      rc.segment(range.offset, range.size) =
+          -(model_.loads().segment(range.offset, range.size) + fc_.segment(range.offset, range.size));
+    structures[s]->add_inertia(a.data() + nb, rc.data(), structure_ws_[s]);
+    structures[s]->add_internal_force(q.data() + nb, v.data() + nb, rc.data(), structure_ws_[s]);
   }
   // Contacts: + G^T lambda, and the scaled constraint rows.
   c.resize(m);
   if (m > 0) {
-    cc.evaluate(t, qm_.data(), qm_.data() + nb, nullptr, nullptr, cv_);
+    model_.constraints().evaluate(t, qm_.data(), qm_.data() + nb, nullptr, nullptr, cv_);
     rb.noalias() += cv_.jb.transpose() * lambda;
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < 4; ++j)
@@ -134,13 +108,8 @@ void CoupledImplicitSystem::residual(double t, const Eigen::VectorXd& q, const E
     c = cv_.phi / c_q;
   }
   // Driven coordinates: their acceleration is the motion's.
-  if (!dyn_->driven().empty()) {
-    dyn_->model().motion(t, motion_q_.data(), motion_v_.data(), motion_a_.data());
-    for (std::size_t k = 0; k < dyn_->driven().size(); ++k) {
-      const int d = dyn_->driven()[k];
-      r[d] = a[d] - motion_a_[k];
-    }
-  }
+  const std::vector<int>& driven = model_.driven().indices();
+  for (std::size_t k = 0; k < driven.size(); ++k) r[driven[k]] = a[driven[k]] - motion_.qdd[static_cast<Eigen::Index>(k)];
 }
 
 void CoupledImplicitSystem::rigid_tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
@@ -149,11 +118,11 @@ void CoupledImplicitSystem::rigid_tangents(double t, const Eigen::VectorXd& q, c
   const int nb = dyn_->nb(), m = dyn_->m();
   qm_ = q;
   vm_ = v;
-  dyn_->impose_motion(t, qm_, vm_);
+  model_.driven().impose(t, qm_.data(), vm_.data(), motion_);
   K_b.setZero(nb, nb);
   C_b.setZero(nb, nb);
-  const ContactConstraints& cc = dyn_->constraints();
-  const auto kernel = dyn_->model().dynamics_jacobians;
+  const ContactConstraints& cc = model_.constraints();
+  const auto kernel = model_.kernels().dynamics_jacobians;
   if (kernel != nullptr && !force_differences) {
     // Closed form (row-major from the kernel), then d(J_b^T lambda)/dq_b below.
     kernel(qm_.data(), vm_.data(), a.data(), t, jac_k_.data(), jac_c_.data());
@@ -161,7 +130,7 @@ void CoupledImplicitSystem::rigid_tangents(double t, const Eigen::VectorXd& q, c
     C_b = Eigen::Map<const RowMajor>(jac_c_.data(), nb, nb);
   }
   for (int j = 0; j < nb; ++j) {
-    if (is_driven_[j]) {
+    if (model_.driven().is_driven(j)) {
       // The motion overrides the state: the driven coordinate moves nothing.
       K_b.col(j).setZero();
       C_b.col(j).setZero();
@@ -196,25 +165,21 @@ void CoupledImplicitSystem::rigid_tangents(double t, const Eigen::VectorXd& q, c
 void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                       const Eigen::VectorXd& a, const Eigen::VectorXd& lambda, double c_q,
                                       double c_v) {
-  const int nb = dyn_->nb(), n = dyn_->n(), m = dyn_->m();
+  const int nb = model_.nb(), n = model_.n(), m = model_.m();
   rigid_tangents(t, q, v, a, lambda, kb_, cb_);
   // Mass matrix and contacts at the state (rigid_tangents left the motion imposed in qm_, vm_).
-  evaluate_dynamics(dyn_->model(), qm_.data(), vm_.data(), t, mb_row_.data(), fb_.data(), qb_force_.data());
+  evaluate_dynamics(model_.kernels(), qm_.data(), vm_.data(), t, mb_row_.data(), fb_.data(), qb_force_.data());
   triplets_.clear();
-  auto add = [&](int i, int j, double value) {
-    if (i < nb && is_driven_[i]) return;  // a driven row is a_d = motion''
-    if (value != 0.0) triplets_.emplace_back(i, j, value);
-  };
+  const std::vector<bool>& driven = model_.driven().mask();
+  TangentSink sink(triplets_, &driven);  // a driven row is a_d = motion''
+  auto add = [&](int i, int j, double value) { sink.add(i, j, value); };
   for (int i = 0; i < nb; ++i) {
-    if (is_driven_[i]) triplets_.emplace_back(i, i, 1.0);
+    if (driven[i]) triplets_.emplace_back(i, i, 1.0);
     for (int j = 0; j < nb; ++j) add(i, j, mb_row_(i, j) + c_v * cb_(i, j) + c_q * kb_(i, j));
   }
-  const std::vector<CoupledBeam>& beams = dyn_->beams();
-  const ContactConstraints& cc = dyn_->constraints();
-  for (std::size_t k = 0; k < beams.size(); ++k) {
-    const CoupledBeam& b = beams[k];
-    if (modal_blocks_ && b.low_rank) continue;  // its block: (1 + c_v c* + c_q k*) M with the low rank
-    const int off = nb + cc.beam_offset(static_cast<int>(k));
+  for (const CoupledBeam& b : model_.beams()) {
+    if (b.structure >= 0) continue;
+    const int off = nb + b.offset;
     for (const auto* mat : {&b.M, &b.C, &b.K}) {
       const double scale = mat == &b.M ? 1.0 : (mat == &b.C ? c_v : c_q);
       for (int col = 0; col < mat->outerSize(); ++col)
@@ -222,37 +187,30 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
           add(off + static_cast<int>(it.row()), off + static_cast<int>(it.col()), scale * it.value());
     }
   }
-  if (springs_.count() > 0) {
-    springs_.apply(qm_.data(), qm_.data() + nb, vm_.data(), vm_.data() + nb, qb_force_, fc_);
-    for (int k = 0; k < springs_.count(); ++k) {
-      const SpringGradient& g = springs_.gradient(k);
-      if (!g.pressing) continue;
-      const double w = c_q * springs_.stiffness(k) + c_v * springs_.damping(k);
-      // g over the rigid coordinates, then the 4 beam DOFs.
-      std::vector<std::pair<int, double>> entries;
-      for (int j = 0; j < nb; ++j)
-        if (g.jb[j] != 0.0) entries.emplace_back(j, g.jb[j]);
-      for (int j = 0; j < 4; ++j)
-        if (g.cols[j] >= 0 && g.je[j] != 0.0) entries.emplace_back(nb + g.cols[j], g.je[j]);
-      for (const auto& [i, gi] : entries)
-        for (const auto& [j, gj] : entries) add(i, j, w * gi * gj);
+  // Adjusted structures: alpha B + U diag(d) U^T; the sparse part joins the
+  // matrix unless the structure is a block of known inverse.
+  const auto& structures = model_.structures();
+  std::vector<LowRankStructure::Term> terms;
+  for (const auto& s : structures) terms.push_back(s->combination(1.0, c_v, c_q));
+  if (!modal_blocks_) {
+    for (std::size_t k = 0; k < structures.size(); ++k) {
+      const LowRankStructure& s = *structures[k];
+      // Stacked coordinate -> global row.
+      std::vector<int> global;
+      for (const LowRankStructure::Range& r : s.ranges())
+        for (int i = 0; i < r.size; ++i) global.push_back(nb + r.offset + i);
+      const Eigen::SparseMatrix<double>& B = s.B();
+      for (int col = 0; col < B.outerSize(); ++col)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(B, col); it; ++it)
+          add(global[it.row()], global[it.col()], terms[k].mu * it.value());
     }
   }
-  if (links_.count() > 0) {
-    // Taut links: k g g^T and c g g^T on the beam DOFs they join. A link
-    // inside a joined structure has its k g g^T in the structure: only its
-    // damper while taut, minus its spring while slack.
-    links_.apply(q.data() + nb, v.data() + nb, fc_);
-    for (int k = 0; k < links_.count(); ++k) {
-      const bool slack = links_.states()[k].slack;
-      const double spring = c_q * links_.stiffness(k), damper = c_v * links_.damping(k);
-      const double w = !links_.inside_structure(k) ? (slack ? 0.0 : spring + damper) : (slack ? -spring : damper);
-      if (w == 0.0) continue;
-      const BeamLinks::Gradient& g = links_.gradient(k);
-      for (int i = 0; i < g.size; ++i)
-        for (int j = 0; j < g.size; ++j) add(nb + g.cols[i], nb + g.cols[j], w * g.values[i] * g.values[j]);
-    }
-  }
+  // Every force element's tangent, at the state its force is taken at.
+  element_forces(t, qm_, vm_);
+  const ForceArgs args{t, qm_.data(), vm_.data(), qm_.data() + nb, vm_.data() + nb};
+  const auto& forces = model_.forces();
+  for (std::size_t e = 0; e < forces.size(); ++e) forces[e]->add_tangent(args, *states_[e], c_q, c_v, sink);
+  const ContactConstraints& cc = model_.constraints();
   if (m > 0) {
     // The contacts' geometric stiffness d(G^T lambda)/dq that rigid_tangents
     // leaves out: the beam rows against q_b (the slider's position moves its
@@ -261,7 +219,7 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
     std::vector<int> columns;
     cc.evaluate(t, qm_.data(), qm_.data() + nb, nullptr, nullptr, cv_);
     for (int j = 0; j < nb; ++j)
-      if (!is_driven_[j]) columns.push_back(j);
+      if (!model_.driven().is_driven(j)) columns.push_back(j);
     for (int r = 0; r < m; ++r)
       for (int j = 0; j < 4; ++j)
         if (cv_.jcol(r, j) >= 0) columns.push_back(nb + cv_.jcol(r, j));
@@ -304,16 +262,15 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
   }
   if (modal_blocks_) {
     std::vector<ModalBlock> blocks;
-    for (std::size_t k = 0; k < beams.size(); ++k) {
-      if (!beams[k].low_rank) continue;
-      const BeamLowRank& lr = *beams[k].low_rank;
+    for (std::size_t k = 0; k < structures.size(); ++k) {
+      const LowRankStructure& s = *structures[k];
       ModalBlock blk;
-      blk.row = nb + cc.beam_offset(static_cast<int>(k));
-      blk.M = &beams[k].M;
-      blk.mass_factor = block_mass_[k].get();
-      blk.phi = &lr.phi_rows;
-      blk.alpha = 1.0 + c_v * lr.c_star + c_q * lr.k_star;
-      blk.d = c_v * lr.d_C + c_q * lr.d_K;
+      blk.row = nb + s.ranges().front().offset;
+      blk.base_factor = &s.base_factor();
+      blk.phi = &s.phi();
+      blk.base_modal = s.base() == LowRankStructure::Base::kMass ? nullptr : &s.base_modal();
+      blk.alpha = terms[k].mu;
+      blk.d = terms[k].d;
       blocks.push_back(std::move(blk));
     }
     try {
@@ -333,86 +290,33 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
        << "); are the contacts independent?";
     throw std::runtime_error(os.str());
   }
-  factorize_low_rank(t, c_q, c_v);
-}
-
-void CoupledImplicitSystem::factorize_low_rank(double t, double c_q, double c_v) {
-  // The low-rank beams add W D W^T to the sparse matrix B, W = U on each
-  // beam's rows, D = c_v d_C + c_q d_K. Woodbury, in the form that never
-  // inverts D (an entry may be zero):
-  //   (B + W D W^T)^-1 = B^-1 - Z (I + D W^T Z)^-1 D W^T B^-1,   Z = B^-1 W.
-  const int nb = dyn_->nb(), n = dyn_->n(), m = dyn_->m();
-  const std::vector<CoupledBeam>& beams = dyn_->beams();
-  const ContactConstraints& cc = dyn_->constraints();
-  low_rank_beams_.clear();
+  // The structures' low rank: W = U on each one's rows, D its term's d.
   int width = 0;
-  for (std::size_t k = 0; k < beams.size(); ++k) {
-    if (!beams[k].low_rank || beams[k].low_rank->U.cols() == 0) continue;
-    low_rank_beams_.push_back({static_cast<int>(k), nb + cc.beam_offset(static_cast<int>(k)), width});
-    width += static_cast<int>(beams[k].low_rank->U.cols());
-  }
-  // A joined structure's block of columns has rows on each of its beams.
-  const int joined_col = width;
-  for (const auto& js : dyn_->joined()) width += static_cast<int>(js->U.cols());
-  if (width == 0) return;
+  for (const auto& s : structures) width += s->rank();
   Eigen::MatrixXd W = Eigen::MatrixXd::Zero(n + m, width);
-  low_rank_d_.resize(width);
-  for (const LowRankBlock& blk : low_rank_beams_) {
-    const BeamLowRank& lr = *beams[blk.beam].low_rank;
-    W.block(blk.row, blk.col, lr.U.rows(), lr.U.cols()) = lr.U;
-    low_rank_d_.segment(blk.col, lr.U.cols()) = c_v * lr.d_C + c_q * lr.d_K;
-  }
-  int col = joined_col;
-  for (const auto& js : dyn_->joined()) {
-    const Eigen::Index mj = js->U.cols();
+  Eigen::VectorXd D(width);
+  std::vector<WoodburyCorrection::Block> blocks;
+  int col = 0;
+  for (std::size_t k = 0; k < structures.size(); ++k) {
+    const LowRankStructure& s = *structures[k];
+    const Eigen::MatrixXd u = s.mass_times_phi();
     Eigen::Index row = 0;
-    for (int b : js->beams) {
-      const int nk = beams[b].mesh.num_free;
-      W.block(nb + cc.beam_offset(b), col, nk, mj) = js->U.middleRows(row, nk);
-      row += nk;
+    for (const LowRankStructure::Range& r : s.ranges()) {
+      W.block(nb + r.offset, col, r.size, s.rank()) = u.middleRows(row, r.size);
+      blocks.push_back({nb + r.offset, r.size, col, s.rank()});
+      row += r.size;
     }
-    low_rank_d_.segment(col, mj) = c_v * js->d_C + c_q * js->d_K;
-    col += static_cast<int>(mj);
+    D.segment(col, s.rank()) = terms[k].d;
+    col += s.rank();
   }
-  low_rank_z_ = lu_.solve(W);
-  // W^T Z block by block: W is zero outside its beams' rows (a dense product
-  // would spend most of its time on those zeros in a model of several beams).
-  Eigen::MatrixXd capacity(width, width);
-  for (const LowRankBlock& blk : low_rank_beams_) {
-    const BeamLowRank& lr = *beams[blk.beam].low_rank;
-    capacity.middleRows(blk.col, lr.U.cols()).noalias() =
-        lr.U.transpose() * low_rank_z_.middleRows(blk.row, lr.U.rows());
-  }
-  col = joined_col;
-  for (const auto& js : dyn_->joined()) {
-    const Eigen::Index mj = js->U.cols();
-    capacity.middleRows(col, mj).setZero();
-    Eigen::Index row = 0;
-    for (int b : js->beams) {
-      const int nk = beams[b].mesh.num_free;
-      capacity.middleRows(col, mj).noalias() +=
-          js->U.middleRows(row, nk).transpose() * low_rank_z_.middleRows(nb + cc.beam_offset(b), nk);
-      row += nk;
-    }
-    col += static_cast<int>(mj);
-  }
-  capacity = low_rank_d_.asDiagonal() * capacity;
-  capacity.diagonal().array() += 1.0;
-  capacity_lu_.compute(capacity);
-  // Singular exactly when B + W D W^T is (B regular, factored above).
-  const double rcond = capacity_lu_.rcond();
-  if (!(rcond >= kSingularCapacityRcond)) {
-    std::ostringstream os;
-    os << "implicit step at t = " << t << " s: the Newton matrix is singular in its low-rank part (the adjusted "
-       << "modes, by Woodbury: reciprocal condition number " << rcond << ")";
-    throw std::runtime_error(os.str());
-  }
-  low_rank_w_ = std::move(W);
+  Eigen::MatrixXd Z = width > 0 ? Eigen::MatrixXd(lu_.solve(W)) : Eigen::MatrixXd(n + m, 0);
+  woodbury_.factorize(std::move(W), std::move(D), std::move(Z), blocks,
+                      "implicit step at t = " + std::to_string(t) + " s: the Newton matrix");
 }
 
 void CoupledImplicitSystem::solve(const Eigen::VectorXd& r, const Eigen::VectorXd& c, Eigen::VectorXd& da,
                                   Eigen::VectorXd& dlambda) {
-  const int n = dyn_->n(), m = dyn_->m();
+  const int n = model_.n(), m = model_.m();
   rhs_.resize(n + m);
   rhs_.head(n) = r;
   rhs_.tail(m) = c;
@@ -423,24 +327,9 @@ void CoupledImplicitSystem::solve(const Eigen::VectorXd& r, const Eigen::VectorX
     return;
   }
   sol_ = lu_.solve(rhs_);
-  if (low_rank_z_.cols() > 0) {
-    low_rank_s_.noalias() = low_rank_w_.transpose() * sol_;
-    low_rank_s_ = low_rank_d_.cwiseProduct(low_rank_s_);
-    sol_.noalias() -= low_rank_z_ * capacity_lu_.solve(low_rank_s_);
-  }
+  woodbury_.correct(sol_);
   da = sol_.head(n);
   dlambda = sol_.tail(m);
-}
-
-void CoupledImplicitSystem::stack_joined(const JoinedLowRank& js, const Eigen::VectorXd& y, Eigen::VectorXd& out) const {
-  const int nb = dyn_->nb();
-  out.resize(js.U.rows());
-  Eigen::Index row = 0;
-  for (int b : js.beams) {
-    const int nk = dyn_->beams()[b].mesh.num_free;
-    out.segment(row, nk) = y.segment(nb + dyn_->constraints().beam_offset(b), nk);
-    row += nk;
-  }
 }
 
 void CoupledImplicitSystem::accelerations(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,

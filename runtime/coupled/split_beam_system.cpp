@@ -6,7 +6,7 @@ namespace mbfe::runtime {
 
 SplitBeamSystem::SplitBeamSystem(std::shared_ptr<CoupledDynamics> dyn) : CoupledSystem(std::move(dyn)) {
   if (!dyn_->split_low_rank_beams())
-    throw std::invalid_argument("model '" + std::string(dyn_->model().model_name) +
+    throw std::invalid_argument("model '" + std::string(dyn_->kernels().model_name) +
                                 "': split coordinates need a low-rank adjusted beam and no constraint contacts "
                                 "or joined structures");
   for (int i = 0; i < dyn_->nb(); ++i) independent_.independent.push_back(i);
@@ -41,15 +41,16 @@ std::string SplitBeamSystem::name(int i) const {
   const int k = i % nz;
   std::string base;
   if (k < n) {
-    base = coupled_coordinate_names(*dyn_)[k];
+    base = dyn_->model().coordinate_names()[k];
   } else {
     // The split beam whose kept-mode coordinates hold entry k - n.
     const int j = k - n;
     std::size_t b = 0;
     while (b + 1 < dyn_->split_offsets().size() && dyn_->split_offsets()[b + 1] <= j) ++b;
-    const int m = static_cast<int>(dyn_->beams()[dyn_->split_beams()[b]].low_rank->U.cols());
+    const LowRankStructure& st = *dyn_->model().structures()[dyn_->split_structures()[b]];
+    const int m = st.rank();
     const int r = j - dyn_->split_offsets()[b];
-    base = dyn_->beams()[dyn_->split_beams()[b]].mesh.name + (r < m ? "_eta" : "_zeta") + std::to_string(r % m + 1);
+    base = st.name() + (r < m ? "_eta" : "_zeta") + std::to_string(r % m + 1);
   }
   return i < nz ? base : base + "_dot";
 }
@@ -74,9 +75,9 @@ void SplitBeamSystem::full_state(double, const Eigen::VectorXd& y, Eigen::Vector
   q = q_;
   qd = qd_;
   const int nb = dyn_->nb();
-  for (std::size_t k = 0; k < dyn_->split_beams().size(); ++k) {
-    const int b = dyn_->split_beams()[k];
-    const int off = nb + dyn_->constraints().beam_offset(b), nk = dyn_->beams()[b].mesh.num_free;
+  for (std::size_t k = 0; k < dyn_->split_structures().size(); ++k) {
+    const LowRankStructure::Range& r = dyn_->model().structures()[dyn_->split_structures()[k]]->ranges().front();
+    const int off = nb + r.offset, nk = r.size;
     dyn_->split_to_nodal(static_cast<int>(k), q_.segment(off, nk), e_, q.segment(off, nk));
     dyn_->split_to_nodal(static_cast<int>(k), qd_.segment(off, nk), ed_, qd.segment(off, nk));
   }
@@ -89,10 +90,10 @@ void SplitBeamSystem::full_state_at(double, const Eigen::VectorXd& y, const std:
   qd = qd_;
   const int nb = dyn_->nb();
   for (int c : beam_dofs) {
-    for (std::size_t k = 0; k < dyn_->split_beams().size(); ++k) {
-      const int b = dyn_->split_beams()[k];
-      const int off = dyn_->constraints().beam_offset(b);
-      if (c < off || c >= off + dyn_->beams()[b].mesh.num_free) continue;
+    for (std::size_t k = 0; k < dyn_->split_structures().size(); ++k) {
+      const LowRankStructure::Range& r = dyn_->model().structures()[dyn_->split_structures()[k]]->ranges().front();
+      const int off = r.offset;
+      if (c < off || c >= off + r.size) continue;
       q[nb + c] = dyn_->split_to_nodal(static_cast<int>(k), c - off, q_[nb + c], e_);
       qd[nb + c] = dyn_->split_to_nodal(static_cast<int>(k), c - off, qd_[nb + c], ed_);
     }

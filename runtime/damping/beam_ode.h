@@ -1,29 +1,21 @@
 // A beam M q'' + C q' + K q = P (original or modally adjusted) as an OdeSystem
-// the integrators step, in two equivalent forms:
-//
-//  - ModalBeamOde: mass-normalised modal coordinates, q = Phi eta, every mode
-//    decoupled: eta_j'' + c_j eta_j' + k_j eta_j = phi_j^T P. O(n) per
-//    right-hand side. Needs a complete basis (every mode): the same model as
-//    the nodal one, only expressed in other coordinates, and every integrator
-//    here is linear and commutes with that change of variables.
-//  - NodalBeamOde: nodal coordinates with K and C as NodalOperators (sparse,
-//    sparse M + low rank, or eq (27)); M is factorised once (sparse LDLT) when
-//    a sparse part needs it; implicit methods factorise a M + b C + c K once per
-//    step size (Woodbury for the low-rank part).
+// the integrators step, in mass-normalised modal coordinates: q = Phi eta,
+// every mode decoupled, eta_j'' + c_j eta_j' + k_j eta_j = phi_j^T P. O(n) per
+// right-hand side. Needs a complete basis (every mode): the same model as the
+// nodal one (runtime/structure/nodal_beam_ode.h), only expressed in other
+// coordinates, and every integrator here is linear and commutes with that
+// change of variables.
 //
 // The load is P (constant) plus, when set, a time-dependent part given as
 // sparse nodal forces at t (runtime/fem/beam_loads.h).
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/LU>
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <functional>
 #include <memory>
 #include <vector>
 
-#include "runtime/damping/modal_adjustment.h"
 #include "runtime/fem/beam_loads.h"
 #include "runtime/integrators/integrator.h"
 #include "runtime/modal/modal_basis.h"
@@ -67,46 +59,6 @@ class ModalBeamOde final : public LinearSecondOrderSystem {
   TimeLoadFn time_loads_;
   std::vector<NodalForce> forces_;  // scratch
   Eigen::VectorXd pt_;              // scratch
-};
-
-class NodalBeamOde final : public LinearSecondOrderSystem {
- public:
-  /// Original model: K, C sparse (C = alpha M + beta K).
-  NodalBeamOde(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& K,
-               const Eigen::SparseMatrix<double>& C, const Eigen::VectorXd& P);
-  /// Adjusted model (low-rank or eq (27)).
-  NodalBeamOde(const Eigen::SparseMatrix<double>& M, const NodalAdjusted& adjusted, const Eigen::VectorXd& P);
-
-  int dof() const override { return static_cast<int>(P_.size()); }
-  void rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) override;
-  void load(double, Eigen::VectorXd& out) override { out = P_; }
-  void mult_m(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { out.noalias() = M_ * x; }
-  void mult_c(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { apply(C_, x, out); }
-  void mult_k(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { apply(K_, x, out); }
-  void solve_combination(double a, double b, double c, const Eigen::VectorXd& r, Eigen::VectorXd& x) override;
-  std::string name(int i) const override;
-
- private:
-  void init();
-  void apply(const NodalOperator& op, const Eigen::VectorXd& x, Eigen::VectorXd& out);
-  void solve_m(const Eigen::VectorXd& r, Eigen::VectorXd& x);
-
-  Eigen::SparseMatrix<double> M_;
-  NodalOperator K_, C_;
-  Eigen::MatrixXd U_, phi_;  // n x m (m = 0 for the original model)
-  Eigen::VectorXd P_, minv_p_;
-  bool sparse_free_ = false;  // K_.S and C_.S absent: rhs needs no M solve
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> m_factor_;
-  bool m_factored_ = false;
-  // Cache of the last (a, b, c) factorisation.
-  double ca_ = 0.0, cb_ = 0.0, cc_ = 0.0;
-  bool cached_ = false;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> a_factor_;
-  Eigen::MatrixXd z_;  // A_s^-1 U
-  Eigen::VectorXd dd_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> small_;
-  // scratch
-  Eigen::VectorXd mx_, ux_, w1_, w2_, w3_, um_;
 };
 
 }  // namespace mbfe::runtime

@@ -21,13 +21,12 @@
 // c / (2 sqrt k) < 1) below zeta_min to zeta_min (c_j = 2 zeta_min omega_j).
 //
 // |r_fast| grows with omega_j for Rayleigh damping, so the adjusted modes of
-// `cap` are a tail of the ascending spectrum: the low-rank form of
-// form (docs/damping-adjustment.md, "Back to nodal coordinates") needs only
-// the modes below it.
+// `cap` are a tail of the ascending spectrum: the low-rank form
+// (docs/damping-adjustment.md, "Back to nodal coordinates";
+// runtime/structure/low_rank_structure.h) needs only the modes below it.
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/SparseCore>
 #include <vector>
 
 #include "runtime/modal/modal_basis.h"
@@ -58,48 +57,5 @@ double fastest_root(double c, double k);
 /// modes. @throws std::invalid_argument if omega_limit <= 0 (any policy but
 /// none), margin < 0 or zeta_min outside [0, 1).
 AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const ir::Adjustment& adjustment);
-
-/// A symmetric n x n operator A = S + s M + U diag(d) U^T, with S sparse
-/// (possibly empty), M the mass matrix and U = M Phi_L (n x m) dense: the form
-/// shared by the original K and C (S only), the low-rank adjusted ones
-/// (the low-rank form of docs/damping-adjustment.md: s = k_star, d_j = k_j - k_star over the kept modes)
-/// and eq (27) with every mode (s = 0, d_j = k_j). Never an n x n dense matrix
-/// unless m = n.
-struct NodalOperator {
-  Eigen::SparseMatrix<double> S;  // n x n or 0 x 0 (absent)
-  double s = 0.0;
-  Eigen::VectorXd d;              // m
-  /// y = A x. `mx` is M x (given by the caller, who usually has it already),
-  /// `ux` is U^T x (m).
-  void apply(const Eigen::VectorXd& x, const Eigen::VectorXd& mx, const Eigen::VectorXd& ux,
-             const Eigen::MatrixXd& U, Eigen::VectorXd& y) const;
-};
-
-/// The adjusted beam in nodal coordinates: K_adj and C_adj as NodalOperators
-/// sharing U = M Phi_L.
-struct NodalAdjusted {
-  Eigen::MatrixXd U;    // n x m, M Phi_L
-  Eigen::MatrixXd phi;  // n x m, Phi_L
-  NodalOperator K, C;
-  bool low_rank = false;  // true: the low-rank form; false: eq (27) over every mode
-};
-
-/// The low-rank form (docs/damping-adjustment.md): only the modes that are not adjusted (the first
-/// ones; the rest must all be kAdjusted with the uniform cap). Works with a
-/// partial basis when its last mode is already adjusted.
-/// @throws std::invalid_argument if the adjustment is not uniform or an
-/// adjusted mode precedes a kept one, or the basis is partial and its last mode
-/// is kept (the tail beyond it is unknown).
-NodalAdjusted low_rank_adjusted(const Eigen::SparseMatrix<double>& M, const ModalBasis& basis,
-                                const AdjustedModes& adjusted);
-
-/// Eq (27) over a complete basis: K_adj = (M Phi) diag(k) (M Phi)^T, likewise C.
-/// Dense U (n x n): small models only. @throws std::invalid_argument if the basis is partial.
-NodalAdjusted eq27_adjusted(const Eigen::SparseMatrix<double>& M, const ModalBasis& basis,
-                            const AdjustedModes& adjusted);
-
-/// Dense matrices of an operator (tests and small models only).
-Eigen::MatrixXd dense_matrix(const NodalOperator& op, const Eigen::SparseMatrix<double>& M,
-                             const Eigen::MatrixXd& U);
 
 }  // namespace mbfe::runtime

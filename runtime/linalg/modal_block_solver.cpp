@@ -41,9 +41,10 @@ void ModalBlockSolver::factorize(int size, const std::vector<Eigen::Triplet<doub
   block_of_.assign(size, -1);
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     const ModalBlock& b = blocks_[k];
-    const int nk = static_cast<int>(b.M->rows());
-    if (b.row < 0 || b.row + nk > size || b.phi->rows() != nk || b.d.size() != b.phi->cols())
-      throw std::invalid_argument("modal block " + std::to_string(k) + ": rows, Phi and d do not fit");
+    const int nk = static_cast<int>(b.phi->rows());
+    if (b.row < 0 || b.row + nk > size || b.base_factor->rows() != nk || b.d.size() != b.phi->cols() ||
+        (b.base_modal != nullptr && b.base_modal->size() != b.phi->cols()))
+      throw std::invalid_argument("modal block " + std::to_string(k) + ": rows, Phi, b and d do not fit");
     for (int i = b.row; i < b.row + nk; ++i) {
       if (block_of_[i] >= 0) throw std::invalid_argument("modal blocks overlap at row " + std::to_string(i));
       block_of_[i] = static_cast<int>(k);
@@ -87,14 +88,16 @@ void ModalBlockSolver::factorize(int size, const std::vector<Eigen::Triplet<doub
   weights_.clear();
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     const ModalBlock& b = blocks_[k];
-    const Eigen::ArrayXd sum = b.alpha + b.d.array();
-    if (!(b.alpha > 0.0) || !(sum.abs() > 0.0).all()) {
+    const Eigen::ArrayXd base = b.base_modal != nullptr ? Eigen::ArrayXd(b.alpha * b.base_modal->array())
+                                                        : Eigen::ArrayXd::Constant(b.d.size(), b.alpha);
+    const Eigen::ArrayXd sum = base + b.d.array();
+    if (!(b.alpha > 0.0) || !(base > 0.0).all() || !(sum.abs() > 0.0).all()) {
       std::ostringstream os;
-      os << "the Newton matrix is singular in a low-rank beam (alpha " << b.alpha << ", smallest |alpha + d| "
-         << sum.abs().minCoeff() << ")";
+      os << "the Newton matrix is singular in a low-rank beam (alpha " << b.alpha << ", smallest |alpha b + d| "
+         << (sum.size() > 0 ? sum.abs().minCoeff() : 0.0) << ")";
       throw std::runtime_error(os.str());
     }
-    weights_.push_back((sum.inverse() - 1.0 / b.alpha).matrix());
+    weights_.push_back((sum.inverse() - base.inverse()).matrix());
   }
 
   // G = (A^-1)_SR, block by block (A is block diagonal).
@@ -120,9 +123,9 @@ void ModalBlockSolver::factorize(int size, const std::vector<Eigen::Triplet<doub
     auto gk = g.block(cols_.first[k], rows_.first[k], ns, nr);
     gk.noalias() = phi_s * weights_[k].asDiagonal() * phi_r.transpose();
     for (int j = 0; j < nr; ++j) {
-      block_b_.setZero(b.M->rows());
+      block_b_.setZero(b.phi->rows());
       block_b_[in_r[j]] = 1.0;
-      block_x_ = b.mass_factor->solve(block_b_);
+      block_x_ = b.base_factor->solve(block_b_);
       for (int i = 0; i < ns; ++i) gk(i, j) += block_x_[in_s[i]] / b.alpha;
     }
   }
@@ -155,7 +158,7 @@ void ModalBlockSolver::apply_block_inverse(const Eigen::VectorXd& b, Eigen::Vect
   }
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     const ModalBlock& blk = blocks_[k];
-    const Eigen::Index nk = blk.M->rows();
+    const Eigen::Index nk = blk.phi->rows();
     block_b_ = b.segment(blk.row, nk);
     if (sparse_at_rows) {
       modal_.setZero(blk.phi->cols());
@@ -164,7 +167,7 @@ void ModalBlockSolver::apply_block_inverse(const Eigen::VectorXd& b, Eigen::Vect
       modal_.noalias() = blk.phi->transpose() * block_b_;
     }
     modal_ = weights_[k].cwiseProduct(modal_);
-    block_x_ = blk.mass_factor->solve(block_b_);
+    block_x_ = blk.base_factor->solve(block_b_);
     block_x_ /= blk.alpha;
     block_x_.noalias() += *blk.phi * modal_;
     x.segment(blk.row, nk) = block_x_;

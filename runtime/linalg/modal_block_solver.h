@@ -3,9 +3,11 @@
 // blocks"):
 //
 //   N = A + E,   A = blockdiag(A_rest, A_1, ..., A_L),
-//   A_k = alpha_k M_k + U_k diag(d_k) U_k^T,   U_k = M_k Phi_k,   Phi_k^T M_k Phi_k = I,
-//   A_k^-1 = M_k^-1 / alpha_k + Phi_k diag(1/(alpha_k + d_k) - 1/alpha_k) Phi_k^T,
+//   A_k = alpha_k B_k + U_k diag(d_k) U_k^T,   U_k = M_k Phi_k,   Phi_k^T M_k Phi_k = I,
+//   A_k^-1 = B_k^-1 / alpha_k + Phi_k diag(1/(alpha_k b_k + d_k) - 1/(alpha_k b_k)) Phi_k^T,
 //
+// B_k the block's base matrix, M_k or K_k, with modal values b_k on Phi_k (1,
+// or the modes' stiffness: runtime/structure/low_rank_structure.h),
 // A_rest the rest of N (rigid coordinates, other beams; sparse LU) and E the
 // couplings (contacts, links, rigid-beam terms), nonzero on a few rows R and
 // columns S. Woodbury over them, not over the kept modes:
@@ -27,20 +29,20 @@
 
 namespace mbfe::runtime {
 
-/// One block alpha M + U diag(d) U^T of N, U = M Phi.
+/// One block alpha B + U diag(d) U^T of N, U = M Phi.
 struct ModalBlock {
   int row = 0;  // its first row (and column) in N
-  const Eigen::SparseMatrix<double>* M = nullptr;                                       // n_k x n_k
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>* mass_factor = nullptr;       // of *M
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>* base_factor = nullptr;       // of B, n_k x n_k
   const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>* phi = nullptr;  // n_k x m_k
+  const Eigen::VectorXd* base_modal = nullptr;  // b, m_k entries; null: all 1 (B = M)
   double alpha = 0.0;  // > 0
-  Eigen::VectorXd d;   // m_k, alpha + d_j != 0
+  Eigen::VectorXd d;   // m_k, alpha b_j + d_j != 0
 };
 
 class ModalBlockSolver {
  public:
   /// `entries`: every entry of N (size x size, summed where repeated) except
-  /// the blocks' own alpha M + U diag(d) U^T. The pointers in `blocks` must
+  /// the blocks' own alpha B + U diag(d) U^T. The pointers in `blocks` must
   /// outlive the solves.
   /// @throws std::runtime_error naming what is singular (the rest, a block, or the couplings).
   void factorize(int size, const std::vector<Eigen::Triplet<double>>& entries, std::vector<ModalBlock> blocks);

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "runtime/structure/coupled_beams.h"
+#include "runtime/structure/adjusted_structures.h"
 #include "runtime/errors/invalid_input.h"
 
 namespace mbfe::runtime {
@@ -81,9 +81,15 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
     links_ = find_link_rest_offsets(model_, beams_);
   }
   if (kind_ == ModelKind::kCoupled) {
-    original_beams_ = coupled_beams(beams_, false);
-    if (beams_.any_adjustment && adjustment_unavailable_.empty())
-      adjusted_beams_ = coupled_beams(beams_, true, joined_);
+    try {
+      original_coupled_ = std::make_shared<const CoupledModel>(*kernels_, coupled_beams(beams_, false), bodies_,
+                                                              model_.links, links_.rest);
+      if (beams_.any_adjustment && adjustment_unavailable_.empty())
+        adjusted_coupled_ = std::make_shared<const CoupledModel>(*kernels_, coupled_beams(beams_, true, joined_),
+                                                                bodies_, model_.links, links_.rest);
+    } catch (const std::invalid_argument& e) {
+      throw InvalidInput(model_.source_path + ": " + e.what());
+    }
   }
 }
 
@@ -98,17 +104,15 @@ bool AssembledModel::resolve_adjusted(std::optional<bool> asked) const {
   return adjusted;
 }
 
-std::shared_ptr<CoupledDynamics> AssembledModel::make_dynamics(bool adjusted) const {
+std::shared_ptr<const CoupledModel> AssembledModel::coupled_model(bool adjusted) const {
   if (kind_ != ModelKind::kCoupled)
     throw InvalidInput("model '" + model_.name + "' is not a coupled model (bodies and beams)");
   resolve_adjusted(adjusted);  // no adjusted beams without an adjustment block
-  std::vector<std::shared_ptr<const JoinedLowRank>> joined;
-  if (adjusted)
-    for (const JoinedStructure& s : joined_) joined.push_back(s.low_rank);
-  auto dynamics = std::make_shared<CoupledDynamics>(*kernels_, adjusted ? adjusted_beams_ : original_beams_, bodies_,
-                                                    model_.links, std::move(joined));
-  for (std::size_t k = 0; k < links_.rest.size(); ++k) dynamics->links().set_rest(static_cast<int>(k), links_.rest[k]);
-  return dynamics;
+  return adjusted ? adjusted_coupled_ : original_coupled_;
+}
+
+std::shared_ptr<CoupledDynamics> AssembledModel::make_dynamics(bool adjusted) const {
+  return std::make_shared<CoupledDynamics>(coupled_model(adjusted));
 }
 
 void AssembledModel::initial_coordinates(Eigen::VectorXd& q, Eigen::VectorXd& qd) const {

@@ -16,6 +16,7 @@
 #include "runtime/abi/mbfe_model_abi.h"
 #include "runtime/damping/beam_model.h"
 #include "runtime/coupled/coupled_dynamics.h"
+#include "runtime/coupled/coupled_model.h"
 #include "runtime/multibody/rigid_system.h"
 #include "runtime/structure/joined_structures.h"
 #include "runtime/structure/link_form_finding.h"
@@ -55,8 +56,12 @@ class AssembledModel {
   /// Mass properties per body, for the message of a singular mass matrix.
   const std::vector<BodyInertia>& bodies() const { return bodies_; }
 
-  /// A fresh coupled dynamics (its workspace belongs to one run), with the
-  /// original or adjusted beams. Coupled models only.
+  /// The coupled model with the original or the adjusted beams, built once
+  /// and shared by every run. Coupled models only.
+  /// @throws InvalidInput as resolve_adjusted, or for a model that is not coupled.
+  std::shared_ptr<const CoupledModel> coupled_model(bool adjusted) const;
+  /// A fresh coupled dynamics over coupled_model(adjusted): the workspace of
+  /// one run (or thread).
   std::shared_ptr<CoupledDynamics> make_dynamics(bool adjusted) const;
 
   /// The initial coordinates of the model's `initial:` block, [q_b; q_c]:
@@ -78,9 +83,8 @@ class AssembledModel {
   ModelKind kind_;
   BeamModel beams_;
   std::vector<BodyInertia> bodies_;
-  // The beams as the coupled dynamics sees them (their callbacks own their
-  // scratch; each make_dynamics() copies them).
-  std::vector<CoupledBeam> original_beams_, adjusted_beams_;
+  // The coupled model, original and adjusted (null when there is none).
+  std::shared_ptr<const CoupledModel> original_coupled_, adjusted_coupled_;
   LinkFormFinding links_;
   std::vector<JoinedStructure> joined_;
   // Why the adjusted beams cannot be built (a large beam whose lowest modes

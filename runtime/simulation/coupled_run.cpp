@@ -137,7 +137,7 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
     // An initial state off the constraints is projected onto them: say so.
     Eigen::VectorXd q(n), qd(n);
     system->full_state(0.0, y0, q, qd);
-    const std::vector<std::string> names = coupled_coordinate_names(*dynamics);
+    const std::vector<std::string> names = dynamics->model().coordinate_names();
     const std::string moved = projection_moves(model, names, q0, q);
     const std::string moved_rates = projection_moves(model, names, qd0, qd);
     if (!moved.empty() || !moved_rates.empty()) {
@@ -150,7 +150,7 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   }
 
   OutputLayout layout;
-  const std::vector<std::string> names = coupled_coordinate_names(*dynamics);
+  const std::vector<std::string> names = dynamics->model().coordinate_names();
   std::vector<std::string> positions, units;
   for (int i = 0; i < nb; ++i) {
     positions.push_back(names[i]);
@@ -181,18 +181,20 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   }
   layout.columns.push_back("phi_abs");
   layout.units.push_back("m");
-  const ContactSprings& springs = dynamics->springs();
-  for (int k = 0; k < springs.count(); ++k) {
-    layout.columns.push_back("force_" + springs.name(k));
+  const std::vector<const SliderSpringForce*>& springs = dynamics->model().slider_springs();
+  const int num_springs = static_cast<int>(springs.size());
+  for (int k = 0; k < num_springs; ++k) {
+    layout.columns.push_back("force_" + springs[k]->name());
     layout.units.push_back("N");
   }
-  for (int k = 0; k < springs.count(); ++k) {
-    layout.columns.push_back("deflection_" + springs.name(k));
+  for (int k = 0; k < num_springs; ++k) {
+    layout.columns.push_back("deflection_" + springs[k]->name());
     layout.units.push_back("m");
   }
-  const BeamLinks& links = dynamics->links();
-  for (int k = 0; k < links.count(); ++k) {
-    layout.columns.push_back("tension_" + links.name(k));
+  const std::vector<const LinkForce*>& links = dynamics->model().links();
+  const int num_links = static_cast<int>(links.size());
+  for (int k = 0; k < num_links; ++k) {
+    layout.columns.push_back("tension_" + links[k]->name());
     layout.units.push_back("N");
   }
   const std::vector<int>& driven = dynamics->driven();
@@ -206,26 +208,26 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   Eigen::VectorXd q(n), qd(n), reactions;
   SimulationOptions options = driver_options(request);
   // Lift-offs and time off contact, on every accepted step.
-  std::vector<SpringContactTally> tally(springs.count());
-  for (int k = 0; k < springs.count(); ++k) tally[k].name = springs.name(k);
+  std::vector<SpringContactTally> tally(num_springs);
+  for (int k = 0; k < num_springs; ++k) tally[k].name = springs[k]->name();
   std::vector<LinkSlackTally> link_tally;
-  for (int k = 0; k < links.count(); ++k)
-    if (links.can_go_slack(k)) link_tally.push_back({links.name(k), 0, 0.0, false, false});
+  for (int k = 0; k < num_links; ++k)
+    if (links[k]->can_go_slack()) link_tally.push_back({links[k]->name(), 0, 0.0, false, false});
   double t_prev = 0.0;
-  if (springs.count() > 0 || !link_tally.empty()) {
+  if (num_springs > 0 || !link_tally.empty()) {
     options.on_step = [&](double t, const Eigen::VectorXd& y) {
       system->report(t, y);  // evaluates the springs and links at this state
-      for (int k = 0, i = 0; k < links.count(); ++k) {
-        if (!links.can_go_slack(k)) continue;
+      for (int k = 0, i = 0; k < num_links; ++k) {
+        if (!links[k]->can_go_slack()) continue;
         LinkSlackTally& c = link_tally[static_cast<std::size_t>(i++)];
-        const bool slack = links.states()[k].slack;
+        const bool slack = dynamics->link_state(k).slack;
         if (slack) c.time_slack += t - t_prev;
         if (slack && !c.slack && c.seen) ++c.slackenings;
         c.slack = slack;
         c.seen = true;
       }
-      for (int k = 0; k < springs.count(); ++k) {
-        const SpringContactState& st = springs.states()[k];
+      for (int k = 0; k < num_springs; ++k) {
+        const SpringContactState& st = dynamics->spring_state(k);
         SpringContactTally& c = tally[k];
         const bool touching = st.delta > 0.0;  // in contact, pressing or not
         if (st.on_beam && !touching) c.time_off += t - t_prev;
@@ -284,9 +286,9 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
       }
       for (int r = 0; r < m; ++r) values[k++] = contacts.lambda[r];
       values[k++] = contacts.phi_max;
-      for (const SpringContactState& st : springs.states()) values[k++] = st.force;
-      for (const SpringContactState& st : springs.states()) values[k++] = st.w;
-      for (const LinkState& st : links.states()) values[k++] = st.tension;
+      for (int s = 0; s < num_springs; ++s) values[k++] = dynamics->spring_state(s).force;
+      for (int s = 0; s < num_springs; ++s) values[k++] = dynamics->spring_state(s).w;
+      for (int l = 0; l < num_links; ++l) values[k++] = dynamics->link_state(l).tension;
       if (!driven.empty()) {
         dynamics->drive_reactions(contacts.qdd, reactions);
         for (Eigen::Index i = 0; i < reactions.size(); ++i) values[k++] = reactions[i];

@@ -29,7 +29,6 @@
 
 #include "runtime/integrators/integrator.h"
 #include "runtime/integrators/simulation_driver.h"
-#include "runtime/coupled/contact_springs.h"
 #include "runtime/simulation/assembled_model.h"
 #include "runtime/simulation/beam_probes.h"
 
@@ -98,6 +97,28 @@ class SimulationObserver {
   /// lines: the initial state was projected onto the contacts (which
   /// coordinates moved, by how much). The tool prints it on stderr.
   virtual void notice(const std::string& /*text*/) {}
+};
+
+/// Lift-offs and time off contact of a slider_spring contact over a run,
+/// counted on accepted steps while the contact point is over its beam. In
+/// contact means delta > 0 (a unilateral damper may still hold N at 0 there
+/// for a moment as the surfaces part; that is not a lift-off).
+struct SpringContactTally {
+  std::string name;
+  int lift_offs = 0;        // transitions from delta > 0 to delta <= 0
+  double time_off = 0.0;    // s with delta <= 0 while over the beam
+  bool in_contact = false;  // at the last accepted step
+  bool seen = false;
+};
+
+/// Slack events and time slack of a link over a run, counted on accepted
+/// steps (like SpringContactTally for contacts).
+struct LinkSlackTally {
+  std::string name;
+  int slackenings = 0;      // transitions from taut to slack
+  double time_slack = 0.0;  // s
+  bool slack = false;       // at the last accepted step
+  bool seen = false;        // a step has been counted (a link slack from the start has not slackened)
 };
 
 struct SimulationReport {

@@ -110,7 +110,7 @@ void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::V
   const int n = dyn.n();
   qd = Eigen::VectorXd::Zero(n);
   dyn.impose_motion(0.0, q, qd);
-  const std::vector<std::string> all_names = coupled_coordinate_names(dyn);
+  const std::vector<std::string> all_names = dyn.model().coordinate_names();
   const std::vector<int> unknown = free_indices(n, dyn.driven());
   std::vector<std::string> names;
   for (int i : unknown) names.push_back(all_names[static_cast<std::size_t>(i)]);
@@ -208,9 +208,7 @@ bool coupled_static_state_sparse(const ir::Model& model, const std::shared_ptr<C
   const Eigen::VectorXd a = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m), r, c, da, dl;
   double last_step = std::numeric_limits<double>::infinity(), first_residual = -1.0;
-  const bool low_rank = !dyn->joined().empty() ||
-                        std::any_of(dyn->beams().begin(), dyn->beams().end(),
-                                    [](const CoupledBeam& b) { return static_cast<bool>(b.low_rank); });
+  const bool low_rank = !dyn->model().structures().empty();
   for (int it = 0; it < kMaxIterations; ++it) {
     sys->residual(0.0, q, qd, a, lambda, kStiffnessWeight, r, c);
     for (int d : dyn->driven()) r[d] = 0.0;  // driven coordinates stay where the motion puts them

@@ -2,24 +2,6 @@
 
 namespace mbfe::runtime {
 
-BeamForceFn sparse_beam_force(Eigen::SparseMatrix<double> C, Eigen::SparseMatrix<double> K) {
-  return [C = std::move(C), K = std::move(K)](const Eigen::Ref<const Eigen::VectorXd>& q,
-                                              const Eigen::Ref<const Eigen::VectorXd>& qd,
-                                              Eigen::Ref<Eigen::VectorXd> f) {
-    f.noalias() = C * qd;
-    f.noalias() += K * q;
-  };
-}
-
-BeamForceFn dense_beam_force(Eigen::MatrixXd C, Eigen::MatrixXd K) {
-  return [C = std::move(C), K = std::move(K)](const Eigen::Ref<const Eigen::VectorXd>& q,
-                                              const Eigen::Ref<const Eigen::VectorXd>& qd,
-                                              Eigen::Ref<Eigen::VectorXd> f) {
-    f.noalias() = C * qd;
-    f.noalias() += K * q;
-  };
-}
-
 BeamMesh beam_mesh(const BeamSystem& beam) {
   BeamMesh mesh;
   mesh.name = beam.name;
@@ -30,19 +12,15 @@ BeamMesh beam_mesh(const BeamSystem& beam) {
   return mesh;
 }
 
-CoupledBeam coupled_beam(const BeamSystem& beam) {
-  CoupledBeam out = coupled_beam(beam, sparse_beam_force(beam.C, beam.K));
-  out.C = beam.C;
-  out.K = beam.K;
-  return out;
-}
-
-CoupledBeam coupled_beam(const BeamSystem& beam, BeamForceFn force) {
+CoupledBeam coupled_beam(const BeamSystem& beam, int offset) {
   CoupledBeam out;
   out.mesh = beam_mesh(beam);
+  out.offset = offset;
   out.M = beam.M;
   out.P = beam.P;
-  out.force = std::move(force);
+  out.C = beam.C;
+  out.K = beam.K;
+  if (beam.has_time_loads()) out.time_loads = std::make_shared<const BeamSystem>(beam);
   return out;
 }
 

@@ -11,7 +11,9 @@
 #include <string>
 
 #include "runtime/modal/modal_analysis.h"
+#include "runtime/structure/adjusted_parts.h"
 #include "runtime/structure/beam_links.h"
+#include "runtime/structure/coupled_beam.h"
 
 namespace mbfe::runtime {
 
@@ -54,7 +56,7 @@ double slack_stiffness_ratio(const ir::Model& model, const JoinedStructure& s, c
   Eigen::MatrixXd g = Eigen::MatrixXd::Zero(s.dof, ns);  // sqrt(k) g per slack link
   for (int a = 0; a < ns; ++a) {
     const ir::Link& link = model.links[slack[a]];
-    const BeamLinks::Gradient grad = link_gradient(link, meshes, offsets);
+    const LinkGradient grad = link_gradient(link, meshes, offsets);
     for (int i = 0; i < grad.size; ++i) g(grad.cols[i], a) += std::sqrt(link.stiffness) * grad.values[i];
   }
   const Eigen::Index nb = s.basis.omega.size();
@@ -117,7 +119,7 @@ JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vec
     const ir::Link& link = model.links[l];
     if (!member(link.a.beam) || !member(link.b.beam)) continue;
     s.links.push_back(l);
-    const BeamLinks::Gradient g = link_gradient(link, meshes, offsets);
+    const LinkGradient g = link_gradient(link, meshes, offsets);
     for (int i = 0; i < g.size; ++i)
       for (int j = 0; j < g.size; ++j)
         tk.emplace_back(g.cols[i], g.cols[j], link.stiffness * g.values[i] * g.values[j]);
@@ -160,9 +162,8 @@ JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vec
   }
   try {
     s.adjusted = adjust_modes(s.original, adjustment);
-    const NodalAdjusted na = low_rank_adjusted(M, s.basis, s.adjusted);
-    if (na.C.S.size() > 0 || na.K.S.size() > 0)
-      throw std::invalid_argument("the adjusted operators have a sparse part beyond c* M and k* M");
+    if (!s.adjusted.uniform)
+      throw std::invalid_argument("its policy changes every mode on its own; a joined structure takes a cap");
     s.slack_stiffness_ratio = slack_stiffness_ratio(model, s, meshes, offsets, M, K, true);
     if (!(s.slack_stiffness_ratio < 1.0)) {
       std::ostringstream os;
@@ -180,17 +181,14 @@ JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vec
             "exact forces), or raise omega_limit";
       throw std::invalid_argument(os.str());
     }
-    s.k_star = na.K.s;
-    s.c_star = na.C.s;
-    auto low_rank = std::make_shared<JoinedLowRank>();
-    low_rank->beams = s.beams;
-    low_rank->links = s.links;
-    const Eigen::Index m = na.U.cols();
-    low_rank->U = na.U;
-    low_rank->phi = na.phi;
-    low_rank->d_C = na.C.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.C.d;
-    low_rank->d_K = na.K.d.size() == 0 ? Eigen::VectorXd::Zero(m) : na.K.d;
-    s.low_rank = std::move(low_rank);
+    std::vector<LowRankStructure::Range> ranges;
+    for (int b : s.beams) ranges.push_back({beams.beams[b].offset, static_cast<int>(beams.beams[b].system.M.rows())});
+    Eigen::VectorXd P(s.dof);
+    for (int b : s.beams) P.segment(offsets[b], beams.beams[b].system.M.rows()) = beams.beams[b].system.P;
+    s.structure =
+        std::make_shared<const LowRankStructure>(adjusted_parts(name, std::move(ranges), M, K, P, s.basis, s.adjusted));
+    s.k_star = s.structure->stiffness().mu;
+    s.c_star = s.structure->damping().mu;
   } catch (const std::invalid_argument& e) {
     throw JoinedStructureError(s.beams.front(), "the joined structure " + name + ": " + e.what());
   }

@@ -14,7 +14,7 @@
 #include "ir/model.h"
 #include "runtime/damping/beam_model.h"
 #include "runtime/damping/modal_adjustment.h"
-#include "runtime/structure/coupled_beam.h"
+#include "runtime/structure/low_rank_structure.h"
 
 namespace mbfe::runtime {
 
@@ -28,12 +28,14 @@ struct JoinedStructure {
   ModalBasis basis;
   std::vector<ModalDynamics> original;  // one per basis mode: k_j = omega_j^2, c_j = phi_j^T C_s phi_j
   AdjustedModes adjusted;               // by the beams' (shared) adjustment block
-  double k_star = 0.0, c_star = 0.0;    // the members' own part: k* M, c* M
+  double k_star = 0.0, c_star = 0.0;    // the cap: k* M, c* M on every mode left out
   /// The largest eigenvalue of [sqrt(k_a k_b) g_a^T K_adj^-1 g_b] over the
   /// slack links inside (0 without any): below 1, the adjusted structure stays
   /// positive definite whichever of them go slack.
   double slack_stiffness_ratio = 0.0;
-  std::shared_ptr<const JoinedLowRank> low_rank;
+  /// The adjusted operators over the members' coordinates in q_c (their
+  /// ranges follow `beams`).
+  std::shared_ptr<const LowRankStructure> structure;
 };
 
 /// Why a joined structure cannot be adjusted; `beam` is its first beam (model order).

@@ -122,7 +122,7 @@ DenseJoined dense_joined(const Model& model, const runtime::CoupledDynamics& dyn
   }
   // Every dropper is at a node (0.5 m elements): g = +1 on the messenger's w,
   // -1 on the contact wire's.
-  const std::vector<std::string> names = runtime::coupled_coordinate_names(dyn);
+  const std::vector<std::string> names = dyn.model().coordinate_names();
   for (const ir::Link& link : model.ir().links) {
     Eigen::VectorXd gk = Eigen::VectorXd::Zero(nc);
     const long node = std::lround(link.a.at / 0.5);
@@ -175,7 +175,7 @@ Eigen::VectorXd dense_joined_accelerations(const Model& model, const runtime::Co
   for (std::size_t l = 0; l < d.g.size(); ++l) {
     const ir::Link& link = model.ir().links[l];
     const double ex = d.g[l].dot(x), rate = d.g[l].dot(v);
-    double tension = link.stiffness * (ex - dyn.links().rest(static_cast<int>(l))) + link.damping * rate;
+    double tension = link.stiffness * (ex - dyn.model().links()[l]->rest()) + link.damping * rate;
     if (link.slack && tension <= 0.0) tension = 0.0;
     f += (-tension + link.stiffness * ex) * d.g[l];
   }
@@ -195,9 +195,10 @@ void expect_dense_accelerations(const std::string& text) {
   dyn->evaluate(0.0, q, qd);
   dyn->solve_augmented(0.0, qdd, lambda);
   int slack = 0;
-  for (const runtime::LinkState& s : dyn->links().states()) slack += s.slack;
+  const int num_links = static_cast<int>(dyn->model().links().size());
+  for (int l = 0; l < num_links; ++l) slack += dyn->link_state(l).slack;
   ASSERT_GT(slack, 0);
-  ASSERT_LT(slack, dyn->links().count());
+  ASSERT_LT(slack, num_links);
   const Eigen::VectorXd expected = dense_joined_accelerations(model, *dyn, q, qd);
   // Two eigen-decompositions of the same 161 x 161 problem and two
   // evaluation orders: agreement to ~1e-12 of the largest acceleration

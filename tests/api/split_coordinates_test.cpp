@@ -55,7 +55,7 @@ TEST(SplitCoordinates, RoundTripToNodalCoordinates) {
   const Model model = load();
   auto dyn = model.assembled().make_dynamics(true);
   runtime::SplitBeamSystem split(dyn);
-  ASSERT_EQ(dyn->split_beams().size(), 2u);
+  ASSERT_EQ(dyn->split_structures().size(), 2u);
   Eigen::VectorXd q0, qd0, q, qd;
   perturbed_state(model, dyn->nb(), q0, qd0);
   dyn->impose_motion(0.0, q0, qd0);
@@ -93,13 +93,13 @@ TEST(SplitCoordinates, AReportDescribesTheStateItWasAskedFor) {
   Eigen::VectorXd y2 = y1, ydot;
   y2.head(dyn->n()).tail(dyn->nc()) *= 0.5;  // the wires elsewhere: other link tensions
   split.report(0.0, y1);
-  const double tension = dyn->links().states()[0].tension;
+  const double tension = dyn->link_state(0).tension;
   split.rhs(0.0, y2, ydot);
-  ASSERT_NE(dyn->links().states()[0].tension, tension);
+  ASSERT_NE(dyn->link_state(0).tension, tension);
   split.report(0.0, y1);
-  EXPECT_EQ(dyn->links().states()[0].tension, tension);
+  EXPECT_EQ(dyn->link_state(0).tension, tension);
   split.report(0.0, y1);
-  EXPECT_EQ(dyn->links().states()[0].tension, tension);
+  EXPECT_EQ(dyn->link_state(0).tension, tension);
 }
 
 TEST(SplitCoordinates, RungeKuttaFollowsTheNodalLowRankForm) {
@@ -141,14 +141,14 @@ TEST(SplitCoordinates, RungeKuttaFollowsTheNodalLowRankForm) {
     worst_rate = std::max(worst_rate, (qds - qdn).cwiseAbs().maxCoeff() / rate_scale);
     nodal.report(t + kStep, yn);
     split.report(t + kStep, ys);
-    for (int l = 0; l < dyn_nodal->links().count(); ++l) {
+    for (int l = 0; l < static_cast<int>(dyn_nodal->model().links().size()); ++l) {
       // A tension is the stiffness times a difference of displacements.
-      EXPECT_NEAR(dyn_split->links().states()[l].tension, dyn_nodal->links().states()[l].tension,
-                  kSameMotionTol * dyn_nodal->links().stiffness(l) * scale)
+      EXPECT_NEAR(dyn_split->link_state(l).tension, dyn_nodal->link_state(l).tension,
+                  kSameMotionTol * dyn_nodal->model().links()[l]->stiffness() * scale)
           << "link " << l << " at step " << k;
-      slack_seen += dyn_nodal->links().states()[l].slack ? 1 : 0;
+      slack_seen += dyn_nodal->link_state(l).slack ? 1 : 0;
     }
-    max_force = std::max(max_force, dyn_nodal->springs().states()[0].force);
+    max_force = std::max(max_force, dyn_nodal->spring_state(0).force);
   }
   EXPECT_LT(worst, kSameMotionTol);
   EXPECT_LT(worst_rate, kSameMotionTol);

@@ -17,7 +17,6 @@
 #include "tests/support/cli.h"
 #include "api/mbfe.h"
 #include "api/solver_cache.h"
-#include "runtime/structure/coupled_beams.h"
 #include "runtime/integrators/integrator.h"
 #include "runtime/coupled/augmented_system.h"
 #include "runtime/coupled/coordinate_partitioning.h"
@@ -25,6 +24,7 @@
 #include "frontend/parse_model.h"
 #include "runtime/coupled/linearization.h"
 #include "runtime/stability/step_limits.h"
+#include "runtime/structure/adjusted_structures.h"
 
 namespace mbfe::coupled_test {
 namespace {
@@ -215,36 +215,43 @@ TEST(CoupledSimulation, CliWritesContactColumnsAndExitsThreeOnDivergence) {
 namespace mbfe::coupled_test {
 namespace {
 
-// The low-rank adjusted beam's acceleration without a solve (M^-1 U = Phi_L)
-// equals M^-1 (P - C q' - K q) from the force callback and a sparse LDLT
-// solve. Both are exact identities in exact arithmetic; the difference is
-// rounding in sums of terms up to |K q| / |M| ~ 1e12 |q|, so it is judged
-// relative to the largest term (1e-9 leaves ~3 orders over double rounding).
+// The adjusted beams of the paper platform as the coupled model holds them
+// (runtime/structure/adjusted_structures.h): their free acceleration, a
+// closed form without a solve with M_adj, equals M^-1 (P - C_adj q' - K_adj q)
+// by a sparse LDLT solve. Both are exact identities in exact arithmetic; the
+// difference is rounding in sums of terms up to |K q| / |M| ~ 1e12 |q|, so it
+// is judged relative to the largest term (1e-9 leaves ~3 orders over double
+// rounding).
 constexpr double kAccelerationRelTol = 1e-9;
 
-TEST(CoupledSimulation, LowRankBeamAccelerationMatchesForceAndSolve) {
+TEST(CoupledSimulation, AdjustedBeamAccelerationMatchesForceAndSolve) {
   const ir::Model model = frontend::load_model_file(model_path("paper_platform.yaml"));
   const runtime::BeamModel beams = runtime::analyse_beams(model);
+  const runtime::CoupledBeams coupled = runtime::coupled_beams(beams, true);
+  ASSERT_EQ(coupled.structures.size(), beams.beams.size());
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (const runtime::BeamPart& b : beams.beams) {
-    const auto accel = runtime::beam_acceleration(b, true);
-    ASSERT_TRUE(static_cast<bool>(accel));
-    const auto force = runtime::beam_force(b, true);
-    const int n = static_cast<int>(b.system.M.rows());
-    Eigen::VectorXd q(n), qd(n), f(n), a(n);
-    for (int i = 0; i < n; ++i) {
+  for (const auto& s : coupled.structures) {
+    const int n = s->size(), off = s->ranges().front().offset;
+    const int nc = static_cast<int>(beams.dof);
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(nc), qd = q, f = q, a = q;
+    for (int i = off; i < off + n; ++i) {
       q[i] = 1e-3 * u(rng);
       qd[i] = 1e-1 * u(rng);
     }
-    accel(q, qd, a);
-    force(q, qd, f);
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(b.system.M);
-    const Eigen::VectorXd ref = ldlt.solve(b.system.P - f);
-    EXPECT_LT((a - ref).cwiseAbs().maxCoeff(), kAccelerationRelTol * ref.cwiseAbs().maxCoeff()) << b.system.name;
+    const runtime::BeamPart& part = beams.beams[static_cast<std::size_t>(&s - coupled.structures.data())];
+    runtime::LowRankStructure::Workspace ws = s->make_workspace();
+    s->free_acceleration(q.data(), qd.data(), nullptr, a.data(), ws);
+    s->add_internal_force(q.data(), qd.data(), f.data(), ws);
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(part.system.M);
+    const Eigen::VectorXd ref = ldlt.solve(part.system.P - f.segment(off, n));
+    EXPECT_LT((a.segment(off, n) - ref).cwiseAbs().maxCoeff(), kAccelerationRelTol * ref.cwiseAbs().maxCoeff())
+        << s->name();
   }
-  // Beams without an adjustment (or --adjust off) take the force + solve path.
-  EXPECT_FALSE(static_cast<bool>(runtime::beam_acceleration(beams.beams[0], false)));
+  // Without --adjust (or without an adjustment) a beam keeps its own C and K.
+  const runtime::CoupledBeams original = runtime::coupled_beams(beams, false);
+  EXPECT_TRUE(original.structures.empty());
+  EXPECT_EQ(original.beams.front().structure, -1);
 }
 
 }  // namespace

@@ -1,13 +1,14 @@
 // The coupled rigid + beam system (the double pendulum on a beam) against
 // independent oracles: partitioned against augmented trajectories, |Phi|
 // along the partitioned one, energy conservation with damping off (the
-// contacts do no work), the dense adjusted operators, the Newton start, and
+// contacts do no work), an adjusted structure over every mode, the Newton start, and
 // the named error of a failed closure.
 #include "runtime/coupled/augmented_system.h"
 #include "runtime/coupled/coordinate_partitioning.h"
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -158,12 +159,37 @@ TEST(CoupledSystem, EnergyIsConservedWithoutDamping) {
 
 // The two formulations solve the same linear system in other orders; the partitioned one also closes Phi to 1e-10 m.
 constexpr double kFormulationForceRel = 1e-9;
-TEST(CoupledSystem, DenseAdjustedOperatorsPlugInUnchanged) {
+// The beam as an adjusted structure over every mode (eq (27)) with its own
+// Rayleigh modal values is the beam itself: same right-hand side as its
+// sparse C and K.
+std::shared_ptr<CoupledDynamics> every_mode_dynamics(const testing::TestBeam& beam) {
+  const Eigen::MatrixXd M(beam.beam.M), K(beam.K), C(beam.C);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
+  const int n = static_cast<int>(M.rows());
+  LowRankStructure::Parts p;
+  p.name = beam.beam.mesh.name;
+  p.ranges = {{0, n}};
+  p.M = beam.beam.M;
+  p.K = beam.K;
+  p.P = beam.beam.P;
+  p.phi = eig.eigenvectors();
+  p.k = eig.eigenvalues();
+  p.mass = {1.0, Eigen::VectorXd::Zero(n)};
+  p.damping = {0.0, (eig.eigenvectors().transpose() * C * eig.eigenvectors()).diagonal()};
+  p.stiffness = {0.0, eig.eigenvalues()};
+  p.every_mode = true;
+  CoupledBeams beams;
+  beams.beams.push_back(beam.beam);
+  beams.beams.back().structure = 0;
+  beams.structures.push_back(std::make_shared<const LowRankStructure>(p));
+  return std::make_shared<CoupledDynamics>(
+      std::make_shared<const CoupledModel>(*double_pendulum_beam_model(), std::move(beams)));
+}
+
+TEST(CoupledSystem, EveryModeStructureIsTheBeamItself) {
   const testing::TestBeam beam = make_beam(6, true);
-  testing::TestBeam dense = beam;
-  dense.beam.force = dense_beam_force(Eigen::MatrixXd(beam.C), Eigen::MatrixXd(beam.K));
   PartitionedSystem a(make_dynamics(*double_pendulum_beam_model(), beam));
-  PartitionedSystem b(make_dynamics(*double_pendulum_beam_model(), dense));
+  PartitionedSystem b(every_mode_dynamics(beam));
   const int nc = beam.beam.mesh.num_free;
   Eigen::VectorXd q0 = full_q(double_pendulum_beam_params().q0, nc);
   std::mt19937 rng(5);

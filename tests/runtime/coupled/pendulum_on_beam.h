@@ -19,10 +19,6 @@ using reference::double_pendulum_beam_model;
 using reference::double_pendulum_beam_params;
 using reference::double_pendulum_beam_pin_model;
 
-using reference::double_pendulum_beam_model;
-using reference::double_pendulum_beam_params;
-using reference::double_pendulum_beam_pin_model;
-
 inline testing::TestBeam make_beam(int elements, bool damping) {
   const reference::DoublePendulumBeamParams& p = double_pendulum_beam_params();
   const double a = p.beam_side;
@@ -37,7 +33,9 @@ inline testing::TestBeam make_beam(int elements, bool damping) {
 
 inline std::shared_ptr<CoupledDynamics> make_dynamics(const mbfe_model_v1& model,
                                                const testing::TestBeam& beam) {
-  return std::make_shared<CoupledDynamics>(model, std::vector<CoupledBeam>{beam.beam});
+  CoupledBeams beams;
+  beams.beams.push_back(beam.beam);
+  return std::make_shared<CoupledDynamics>(std::make_shared<const CoupledModel>(model, std::move(beams)));
 }
 
 // Tip of the pendulum placed at (x, 0) with the knee to the right.

@@ -15,6 +15,8 @@
 // only part a grid of 2e-4 s or coarser sees.
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseCholesky>
+
 #include <cmath>
 #include <string>
 #include <vector>

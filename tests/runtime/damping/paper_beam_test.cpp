@@ -8,6 +8,8 @@
 
 #include "runtime/damping/beam_model.h"
 #include "runtime/damping/beam_ode.h"
+#include "runtime/structure/adjusted_parts.h"
+#include "runtime/structure/nodal_beam_ode.h"
 #include "runtime/damping/modal_adjustment.h"
 #include "runtime/integrators/integrator.h"
 #include "runtime/integrators/simulation_driver.h"
@@ -118,9 +120,11 @@ TEST(PaperBeam, AdjustedForwardEulerLimitModal) {
 
 TEST(PaperBeam, AdjustedForwardEulerLimitNodalLowRank) {
   const BeamPart& p = paper_beams().beams.at(0);
-  const NodalAdjusted adj = low_rank_adjusted(p.system.M, p.basis, p.adjusted);
-  EXPECT_LT(adj.U.cols(), 25);  // only the kept low modes
-  NodalBeamOde ode(p.system.M, adj, p.system.P);
+  const int n = static_cast<int>(p.system.M.rows());
+  auto adj = std::make_shared<const LowRankStructure>(
+      adjusted_parts(p.system.name, {{0, n}}, p.system.M, p.system.K, p.system.P, p.basis, p.adjusted));
+  EXPECT_LT(adj->rank(), 25);  // only the kept low modes
+  NodalBeamOde ode(adj);
   EXPECT_EQ(run_forward_euler(ode, 1.4e-5, 1.0).status, SimulationStatus::kCompleted);
   EXPECT_EQ(run_forward_euler(ode, 1.5e-5, 1.0).status, SimulationStatus::kDiverged);
 }

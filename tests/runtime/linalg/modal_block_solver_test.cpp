@@ -22,9 +22,10 @@ using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Ro
 constexpr double kSameSolutionTol = 1e-10;
 
 struct Block {
-  Eigen::SparseMatrix<double> M;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor;
+  Eigen::SparseMatrix<double> M, K;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor, k_factor;
   RowMajor phi;
+  Eigen::VectorXd k;  // the kept modes' K-values (eigenvalues)
 };
 
 // A tridiagonal SPD mass and stiffness; phi: the first `kept` M-orthonormal modes.
@@ -40,8 +41,11 @@ void make_block(int n, int kept, double scale, Block& b) {
   }
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
   b.phi = eig.eigenvectors().leftCols(kept);
+  b.k = eig.eigenvalues().head(kept);
   b.M = M.sparseView();
+  b.K = K.sparseView();
   b.factor.compute(b.M);
+  b.k_factor.compute(b.K);
 }
 
 TEST(ModalBlockSolver, MatchesADenseLuOfTheSameMatrix) {
@@ -53,16 +57,20 @@ TEST(ModalBlockSolver, MatchesADenseLuOfTheSameMatrix) {
   make_block(n1, 5, 1.0, b1);
   make_block(n2, 4, 0.5, b2);
   const int row1 = n_rest_front, row2 = n_rest_front + n1;
+  // Block 1 is a multiple of its M, block 2 of its K (the policy mass's
+  // Newton matrix), each plus U diag(d) U^T.
   std::vector<ModalBlock> blocks(2);
-  blocks[0] = {row1, &b1.M, &b1.factor, &b1.phi, 3.0, Eigen::VectorXd::Zero(5)};
-  blocks[1] = {row2, &b2.M, &b2.factor, &b2.phi, 2.0, Eigen::VectorXd::Zero(4)};
+  blocks[0] = {row1, &b1.factor, &b1.phi, nullptr, 3.0, Eigen::VectorXd::Zero(5)};
+  blocks[1] = {row2, &b2.k_factor, &b2.phi, &b2.k, 2.0, Eigen::VectorXd::Zero(4)};
   for (int j = 0; j < 5; ++j) blocks[0].d[j] = 1.0 + u(rng);
-  for (int j = 0; j < 4; ++j) blocks[1].d[j] = -0.5 + 0.2 * u(rng);  // alpha + d stays positive
+  for (int j = 0; j < 4; ++j) blocks[1].d[j] = (-0.5 + 0.2 * u(rng)) * b2.k[j];  // alpha b + d stays positive
   Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(size, size);
-  for (const ModalBlock& blk : blocks) {
-    const Eigen::MatrixXd m = Eigen::MatrixXd(*blk.M);
-    const Eigen::MatrixXd U = m * Eigen::MatrixXd(*blk.phi);
-    dense.block(blk.row, blk.row, m.rows(), m.rows()) += blk.alpha * m + U * blk.d.asDiagonal() * U.transpose();
+  for (int k = 0; k < 2; ++k) {
+    const ModalBlock& blk = blocks[k];
+    const Block& b = k == 0 ? b1 : b2;
+    const Eigen::MatrixXd base = Eigen::MatrixXd(k == 0 ? b.M : b.K);
+    const Eigen::MatrixXd U = Eigen::MatrixXd(b.M) * Eigen::MatrixXd(*blk.phi);
+    dense.block(blk.row, blk.row, base.rows(), base.rows()) += blk.alpha * base + U * blk.d.asDiagonal() * U.transpose();
   }
   std::vector<Eigen::Triplet<double>> entries;
   auto add = [&](int i, int j, double v) {
@@ -106,7 +114,7 @@ TEST(ModalBlockSolver, RefusesASingularBlock) {
   Block b;
   make_block(6, 2, 1.0, b);
   std::vector<ModalBlock> blocks(1);
-  blocks[0] = {0, &b.M, &b.factor, &b.phi, 2.0, Eigen::Vector2d(1.0, -2.0)};  // alpha + d_2 = 0
+  blocks[0] = {0, &b.factor, &b.phi, nullptr, 2.0, Eigen::Vector2d(1.0, -2.0)};  // alpha + d_2 = 0
   ModalBlockSolver solver;
   try {
     solver.factorize(6, {}, blocks);

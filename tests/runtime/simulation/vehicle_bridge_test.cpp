@@ -139,13 +139,13 @@ TEST(SliderSpring, KernelsAndForcesAgreeWithFiniteDifferences) {
   // from the motion at t (7.3 + 2 t), the rest moves with qd.
   auto delta = [&](double t) {
     dyn->evaluate(t, q + t * qd, Eigen::VectorXd::Zero(n));
-    return dyn->springs().states()[0].delta;
+    return dyn->spring_state(0).delta;
   };
   const double d0 = delta(0.0);
   const double eps = 1e-7;
   const double rate = (delta(eps) - delta(-eps)) / (2 * eps);
   dyn->evaluate(0.0, q, qd);
-  const runtime::SpringContactState st = dyn->springs().states()[0];
+  const runtime::SpringContactState st = dyn->spring_state(0);
   EXPECT_NEAR(st.delta, d0, 1e-15);
   EXPECT_NEAR(st.rate, rate, kFdTol);
   EXPECT_NEAR(st.force, 5.0e6 * st.delta + 1.0e3 * st.rate, 1e-9 * std::abs(st.force));
@@ -167,7 +167,7 @@ TEST(SliderSpring, UnilateralNeverPulls) {
       qd[i] = 0.5 * nd(rng);
     }
     dyn->evaluate(0.0, q, qd);
-    const runtime::SpringContactState& st = dyn->springs().states()[0];
+    const runtime::SpringContactState& st = dyn->spring_state(0);
     EXPECT_GE(st.force, 0.0);
     if (st.delta <= 0.0) EXPECT_EQ(st.force, 0.0);
     pressed += st.force > 0.0;
