@@ -38,7 +38,7 @@ ForceStatistics force_statistics(const std::vector<double>& t, const std::vector
         throw std::invalid_argument(os.str());
       }
     }
-    filtered = filtfilt(butterworth_lowpass(options.order, options.lowpass_hz, 1.0 / dt),
+    filtered = sosfiltfilt(butterworth_lowpass(options.order, options.lowpass_hz, 1.0 / dt),
                         std::vector<double>(force.begin(), force.begin() + static_cast<std::ptrdiff_t>(n)));
   }
   ForceStatistics s;
