@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <fstream>
 #include <regex>
 
@@ -9,6 +10,8 @@ namespace mbfe::tool {
 
 std::map<std::string, std::string> sidecar_units(const std::string& csv_path) {
   std::map<std::string, std::string> out;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(csv_path + ".json", ec)) return out;  // not a device or a pipe
   std::ifstream in(csv_path + ".json");
   if (!in) return out;
   try {
