@@ -11,6 +11,7 @@
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "tool/results_columns.h"
+#include "tool/json_text.h"
 
 namespace mbfe::tool {
 
@@ -99,7 +100,7 @@ int cmd_stats(const Args& args) {
     j["max"] = s.max;
     j["min"] = s.min;
     j["loss_percent"] = s.loss_percent;
-    std::cout << j.dump(2) << "\n";
+    std::cout << json_text(j, 2) << "\n";
     return 0;
   }
   std::cout << "'" << *column << "', " << s.samples << " samples"

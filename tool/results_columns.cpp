@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "frontend/text_guard.h"
 #include "tool/cli_args.h"
 #include "tool/file_checks.h"
 
@@ -129,16 +130,16 @@ void npy_shape(const std::string& header, const std::string& path, std::size_t& 
   const std::size_t shape = header.find("'shape': (");
   if (!has("'descr': '<f8'") || !has("'fortran_order': False") || shape == std::string::npos)
     throw UsageError(path + ": expected a 2-D array of little-endian doubles in C order (what mbfe simulate writes), "
-                            "got the header " + header.substr(0, 200));
+                            "got the header " + frontend::utf8_prefix(header, 200));
   const char* p = header.data() + shape + 10;
   const char* end = header.data() + header.size();
   unsigned long long r = 0, c = 0;
   auto [after_rows, e1] = std::from_chars(p, end, r);
   if (e1 != std::errc() || end - after_rows < 2 || after_rows[0] != ',' || after_rows[1] != ' ')
-    throw UsageError(path + ": expected a 2-D shape (rows, columns) in the header " + header.substr(0, 200));
+    throw UsageError(path + ": expected a 2-D shape (rows, columns) in the header " + frontend::utf8_prefix(header, 200));
   auto [after_columns, e2] = std::from_chars(after_rows + 2, end, c);
   if (e2 != std::errc() || after_columns == end || *after_columns != ')')
-    throw UsageError(path + ": expected a 2-D shape (rows, columns) in the header " + header.substr(0, 200));
+    throw UsageError(path + ": expected a 2-D shape (rows, columns) in the header " + frontend::utf8_prefix(header, 200));
   rows = r;
   columns = c;
 }
