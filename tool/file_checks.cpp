@@ -35,7 +35,8 @@ void check_input_file(const std::string& path, const std::string& what) {
     throw UsageError(path + ": cannot read " + what + ": not a regular file (a device or a socket)");
 }
 
-void check_output_file(const std::string& path, const std::string& flag, const std::vector<std::string>& inputs) {
+void check_output_file(const std::string& path, const std::string& flag, const std::vector<std::string>& inputs,
+                       bool folder_made_later) {
   struct stat info {};
   if (::stat(path.c_str(), &info) == 0) {
     if (const std::string* input = same_file(info, inputs))
@@ -47,7 +48,7 @@ void check_output_file(const std::string& path, const std::string& flag, const s
   // always given for it).
   const fs::path parent = fs::path(path).parent_path();
   std::error_code ec;
-  if (!parent.empty() && !fs::is_directory(parent, ec))
+  if (!folder_made_later && !parent.empty() && !fs::is_directory(parent, ec))
     throw UsageError(path + ": cannot write the output: No such file or directory");
 }
 

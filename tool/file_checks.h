@@ -18,10 +18,12 @@ void check_input_file(const std::string& path, const std::string& what);
 
 /// Refuses the output file `path` (given by `flag`) before anything is
 /// written: the same file as any of `inputs` (same device and inode, whatever
-/// the names), an existing folder, or a path in a folder that does not exist.
-/// A device (--out /dev/null) passes.
+/// the names), an existing folder, or a path in a folder that does not exist
+/// (unless `folder_made_later`: the command creates it). A device
+/// (--out /dev/null) passes.
 /// @throws UsageError "<flag> <path>: ..." .
-void check_output_file(const std::string& path, const std::string& flag, const std::vector<std::string>& inputs);
+void check_output_file(const std::string& path, const std::string& flag, const std::vector<std::string>& inputs,
+                       bool folder_made_later = false);
 
 /// Refuses the output folder `dir` (given by `flag`): an existing path that is
 /// not a folder, or one of `inputs`. A folder that does not exist yet passes
