@@ -38,7 +38,8 @@ Options:
   --integrator NAME  forward_euler, backward_euler, explicit_midpoint, trapezoid,
                      rk4, generalized_alpha (beams, coupled), ab2, bdf2,
                      lmm:alpha=a0,..,ak:beta=b0,..,bk
-  --step H           step in s
+  --step H           step in s (one longer than the run is shortened to the
+                     run; more than 2^53 steps are refused)
   --t-end T          end time in s
   --out FILE.csv     output file (default: standard output); FILE.npy writes a
                      NumPy array (rows x columns, numpy.load reads it) instead;

@@ -234,5 +234,24 @@ TEST_F(CliFaults, AModelPathThatIsNotUtf8StillGetsItsSidecar) {
   EXPECT_NE(sidecar.find("\"status\": \"completed\""), std::string::npos) << sidecar;
 }
 
+TEST_F(CliFaults, StepCountsBeyondTheLimitAreRefusedAndALongStepIsShortenedToTheRun) {
+  // 1e19 steps overflowed the count: "0 rk4 steps ... completed", exit 0.
+  RunResult r = mbfe("simulate models/double_pendulum.yaml --step 1e-10 --t-end 1e9 --quiet --out " +
+                     quote((tmp_ / "never.csv").string()));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("the run needs 1e+19 steps"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("more than the limit of 9007199254740992 (2^53)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(tmp_ / "never.csv"));
+  // A step of 1e300 s over a 1 s run took no step and said completed: now
+  // one step of 1 s, its row at t = 1.
+  const fs::path csv = tmp_ / "one.csv";
+  r = mbfe("simulate models/double_pendulum.yaml --step 1e300 --t-end 1 --out " + quote(csv.string()));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("1 rk4 steps of 1 s to t = 1 s"), std::string::npos) << r.err;
+  const Csv rows = read_csv(csv.string());
+  ASSERT_EQ(rows.rows.size(), 2u);
+  EXPECT_EQ(rows.rows.back()[0], 1.0);
+}
+
 }  // namespace
 }  // namespace mbfe::test
