@@ -137,6 +137,11 @@ void parse_simulation(const MapView& view, ir::SweepSimulation& sim) {
   if (const Field* f = view.find("probes")) {
     for (const YAML::Node& item : view.list(*f)) {
       if (!item.IsScalar()) view.fail(location_of(item), view.prefixed("probes: expected 'beam@s' strings"));
+      for (const std::string& earlier : sim.probes)
+        if (earlier == item.Scalar())
+          view.fail(location_of(item), view.prefixed("probes: '" + shown(earlier) +
+                                                     "' is given twice; each probe is a column and needs a name "
+                                                     "of its own"));
       sim.probes.push_back(item.Scalar());
     }
   }

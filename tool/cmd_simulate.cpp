@@ -233,6 +233,13 @@ int cmd_simulate(const Args& args) {
     check_output_file(*out, "--out", {model_path});
     check_output_file(*out + ".json", "--out (its sidecar)", {model_path});
   }
+  if (const auto probe = parsed.value("probe")) {
+    const std::vector<std::string> labels = split_commas(*probe);
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (labels[i] == labels[j])
+          throw UsageError("--probe: '" + labels[i] + "' is given twice; each probe is a column and needs a name of its own");
+  }
   const auto vtk_dir = parsed.value("vtk");
   const double frames = parsed.number("vtk-frames").value_or(200.0);
   if (vtk_dir) {

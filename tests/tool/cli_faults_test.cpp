@@ -122,6 +122,7 @@ TEST_F(CliFaults, BadFlagsExit2) {
       {"simulate models/double_pendulum.yaml --t-end 0", "--t-end must be > 0"},
       {"simulate models/double_pendulum.yaml --every 0", "--every"},
       {"simulate models/double_pendulum.yaml --integrator nonsense", "nonsense"},
+      {"simulate models/bridge_moving_mass.yaml --probe deck@10,deck@5,deck@10", "--probe: 'deck@10' is given twice"},
       {"simulate", "expected one model file"},
       {"simulate a.yaml b.yaml", "expected one model file"},
       {"eval models/double_pendulum.yaml --q 1,2,3", "--q"},
