@@ -6,6 +6,8 @@
 // a path that is not UTF-8 still gets its sidecar.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <regex>
 #include <string>
 
@@ -252,6 +254,26 @@ TEST_F(CliFaults, StepCountsBeyondTheLimitAreRefusedAndALongStepIsShortenedToThe
   const Csv rows = read_csv(csv.string());
   ASSERT_EQ(rows.rows.size(), 2u);
   EXPECT_EQ(rows.rows.back()[0], 1.0);
+}
+
+TEST_F(CliFaults, BadInputFoundAfterTheOutputOpenedRemovesOnlyARegularFile) {
+  // Bad input found once the output is open (here the step count, refused by
+  // the driver after the header) removes the empty output: it removed
+  // whatever --out named, a device or a pipe too (as root, --out /dev/null
+  // took /dev/null off the machine). A pipe with a reader stands in for it.
+  const fs::path pipe = tmp_ / "pipe";
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  const std::string reader = "{ cat " + quote(pipe.string()) + " >/dev/null & } && " + env();
+  const RunResult r = run_mbfe(tmp_, "simulate models/double_pendulum.yaml --step 1e-10 --t-end 1e9 --quiet --out " +
+                                         quote(pipe.string()), reader);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(fs::is_fifo(pipe)) << "the pipe was removed";
+  // A regular file is still removed.
+  const fs::path csv = tmp_ / "empty.csv";
+  const RunResult f = mbfe("simulate models/double_pendulum.yaml --step 1e-10 --t-end 1e9 --quiet --out " +
+                           quote(csv.string()));
+  EXPECT_EQ(f.status, 2) << f.err;
+  EXPECT_FALSE(fs::exists(csv));
 }
 
 }  // namespace
