@@ -1,7 +1,6 @@
 // `mbfe plot results.csv -o out.png [--columns a,b] [--x COLUMN] [--title T]`:
 // columns of a simulation CSV drawn by gnuplot, one panel per kind of quantity,
 // axes labelled with their units.
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>

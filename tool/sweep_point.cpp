@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -26,7 +27,16 @@ constexpr const char* kStaleMessage =
     "its result is of another request (the model, the point's values, simulate: or collect: changed since); "
     "running the sweep again runs it";
 
+// A point's own files: its model.yaml (at most the 16 MiB of a model file) and
+// result.json (statistics and one message).
+constexpr std::uintmax_t kMaxPointFileBytes = std::uintmax_t{32} << 20;
+
+/// A point's file, or "" when it is not a regular file of at most
+/// kMaxPointFileBytes (a device put in its place is not read without end):
+/// the point then counts as not run.
 std::string slurp(const fs::path& p) {
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec) || fs::file_size(p, ec) > kMaxPointFileBytes || ec) return "";
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();

@@ -6,6 +6,7 @@
 // a message with non-ASCII text stays a result, devices and arguments a Slurm
 // script cannot carry are refused.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -187,7 +188,7 @@ TEST(Sweep, AMessageCutInTheMiddleOfLongNonAsciiTextIsStillARecordedFailure) {
   EXPECT_NE(slurp(out + "/summary.json").find("\"failed\": 1"), std::string::npos);
 }
 
-TEST(Sweep, ADeviceAsTheModelOrTheSweepFileIsRefused) {
+TEST(Sweep, ADeviceAsTheModelTheSweepFileOrAResultIsNeverRead) {
   // `model: /dev/zero` was read until memory ran out.
   TempDir dir;
   const fs::path sweep = dir / "zero.yaml";
@@ -201,6 +202,19 @@ TEST(Sweep, ADeviceAsTheModelOrTheSweepFileIsRefused) {
   EXPECT_EQ(r.status, 2) << r.all();
   EXPECT_NE(r.err.find("/dev/zero: cannot read: not a regular file"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
+  // A point's result.json replaced by a pipe that nobody writes (as a device,
+  // it was read without end; a pipe blocked for ever): the point counts as
+  // not run, and the summary is written.
+  const fs::path pendulum = dir / "pendulum.yaml";
+  write_pendulum_sweep(pendulum, "{t_end: 0.01}");
+  r = run_cli("sweep " + shell_quote(pendulum.string()) + " --out " + shell_quote(out) + " --jobs 1 --quiet");
+  ASSERT_EQ(r.status, 0) << r.all();
+  fs::remove(out + "/points/0/result.json");
+  ASSERT_EQ(::mkfifo((out + "/points/0/result.json").c_str(), 0600), 0);
+  r = run_cli("sweep " + shell_quote(pendulum.string()) + " --out " + shell_quote(out) + " --collect",
+              bounded_run_prefix());
+  EXPECT_EQ(r.status, 3) << r.all();
+  EXPECT_NE(r.err.find("1 done, 0 failed, 1 missing"), std::string::npos) << r.err;
 }
 
 TEST(Sweep, SlurmScriptsQuoteEveryPathAndRefuseControlCharacters) {
