@@ -14,10 +14,10 @@
 #include "runtime/simulation/invalid_input.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/json_text.h"
 #include "tool/linearization_notice.h"
 #include "tool/modal_report.h"
 #include "tool/plot_spectrum.h"
-#include "tool/json_text.h"
 #include "runtime/stability/step_limits.h"
 
 namespace mbfe::tool {

@@ -11,9 +11,9 @@
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "tool/file_checks.h"
+#include "tool/json_text.h"
 #include "tool/results_output.h"
 #include "tool/vtk_animation.h"
-#include "tool/json_text.h"
 
 namespace mbfe::tool {
 

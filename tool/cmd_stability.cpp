@@ -17,8 +17,8 @@
 #include "api/mbfe.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/linearization_notice.h"
 #include "tool/json_text.h"
+#include "tool/linearization_notice.h"
 
 namespace mbfe::tool {
 

@@ -10,8 +10,8 @@
 #include "runtime/signal/force_statistics.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/results_columns.h"
 #include "tool/json_text.h"
+#include "tool/results_columns.h"
 
 namespace mbfe::tool {
 

@@ -55,8 +55,9 @@ DIR/summary.json list each point's values, status and collected statistics.
 
 A re-run skips points already done for the same request (the point's model
 file, the simulate: block and the collect: entries); failed points, and points
-whose result is of another request, run again. A failed point (bad combination, divergence) is recorded with its
-message and exit status; the others go on.
+whose result is of another request, run again. A failed point (bad
+combination, divergence) is recorded with its message and exit status; the
+others go on.
 
 Exit status: 0 every point done; 2 bad sweep file or flags; 3 some point failed
 (the summary says which).

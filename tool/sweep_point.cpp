@@ -3,8 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -13,8 +13,8 @@
 #include "api/mbfe.h"
 #include "frontend/parse_sweep.h"
 #include "frontend/sha256.h"
-#include "tool/results_output.h"
 #include "tool/json_text.h"
+#include "tool/results_output.h"
 
 namespace mbfe::tool {
 
