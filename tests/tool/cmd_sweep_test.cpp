@@ -219,19 +219,24 @@ TEST(Sweep, ADeviceAsTheModelTheSweepFileOrAResultIsNeverRead) {
 
 TEST(Sweep, SlurmScriptsQuoteEveryPathAndRefuseControlCharacters) {
   TempDir dir;
+  // One solver for both points (the initial angle is no constant of the
+  // generated code): --slurm compiles it into DIR/cache first.
+  const fs::path sweep = dir / "angles.yaml";
+  spit(sweep, "sweep: angles\nmodel: " + source("models/double_pendulum.yaml") +
+                  "\nvary:\n  - {path: initial.q.link1, values: [0.1, 0.2]}\nsimulate: {t_end: 0.01}\n");
   // A newline in --out wrote a line of its own into points.sbatch.
   const std::string injected = (dir / "out\n#SBATCH --wrap=evil").string();
-  CliRun r = run_cli("sweep " + shell_quote(source("tests/sweep/six_speeds.yaml")) + " --out " +
+  CliRun r = run_cli("sweep " + shell_quote(sweep.string()) + " --out " +
                      shell_quote(injected) + " --slurm --dry-run --quiet");
   EXPECT_EQ(r.status, 2) << r.all();
   EXPECT_NE(r.err.find("holds the control character \\x0A"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(injected));
-  r = run_cli("sweep " + shell_quote(source("tests/sweep/six_speeds.yaml")) + " --out " +
+  r = run_cli("sweep " + shell_quote(sweep.string()) + " --out " +
               shell_quote((dir / "o").string()) + " --slurm --dry-run --quiet --partition " + shell_quote("a\nb"));
   EXPECT_EQ(r.status, 2) << r.all();
   // A space broke --output=; a % would be taken for one of Slurm's patterns.
   const std::string out = (dir / "runs of 50% \"load\"").string();
-  r = run_cli("sweep " + shell_quote(source("tests/sweep/six_speeds.yaml")) + " --out " + shell_quote(out) +
+  r = run_cli("sweep " + shell_quote(sweep.string()) + " --out " + shell_quote(out) +
               " --slurm --dry-run --quiet");
   ASSERT_EQ(r.status, 0) << r.all();
   const std::string points = slurp(out + "/slurm/points.sbatch");
