@@ -23,6 +23,7 @@ void ModelParser::parse(const YAML::Node& root) {
   if (const Field* contacts = top.find("contacts")) parse_contacts(top, *contacts);
   if (const Field* links = top.find("links")) parse_links(top, *links);
   check_joined_adjustments(top);
+  check_output_columns(top);
   model_.initial.q.assign(model_.bodies.size(), 0.0);
   model_.initial.qd.assign(model_.bodies.size(), 0.0);
   if (const Field* initial = top.find("initial")) parse_initial(top.sub(*initial));

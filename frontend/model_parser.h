@@ -124,6 +124,17 @@ class ModelParser {
 
   void check_something_moves(const MapView& top) const;
 
+  // ---- output columns (parse_output_columns.cpp) ------------------------
+
+  /// Every column the model's runs write has a name of its own, and `t` and
+  /// `phi_abs` are the runs': a body, contact or link whose column would take
+  /// another's name is refused at its name.
+  void check_output_columns(const MapView& top) const;
+
+  /// The beam whose coordinate column `column` is (B_w<k>, B_dw<k>, with or
+  /// without _dot; its node k in `node`), or -1.
+  int beam_of_column(const std::string& column, int& node) const;
+
   const std::string& file_;
   const ParseLimits& limits_;
   Model& model_;
@@ -132,6 +143,7 @@ class ModelParser {
   std::unordered_map<std::string, int> body_by_name_;
   std::unordered_map<std::string, int> beam_by_name_;
   std::vector<std::unordered_map<std::string, int>> point_by_name_;  // per body
+  std::vector<SourceLoc> contact_name_locs_, link_name_locs_;       // per contact, per link
   long long total_beam_dofs_ = 0;
 };
 

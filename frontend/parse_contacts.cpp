@@ -48,6 +48,7 @@ void ModelParser::parse_contacts(const MapView& top, const Field& field) {
     }
     parse_contact_position(view, contact);
     model_.contacts.push_back(contact);
+    contact_name_locs_.push_back(name.value_loc);
   }
 }
 
@@ -114,6 +115,7 @@ void ModelParser::parse_links(const MapView& top, const Field& field) {
     if (rest) link.rest = view.number(*rest);
     if (hold) link.hold = view.number(*hold);
     model_.links.push_back(link);
+    link_name_locs_.push_back(name.value_loc);
   }
 }
 

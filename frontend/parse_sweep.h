@@ -9,14 +9,20 @@
 
 namespace mbfe::frontend {
 
-/// Reads and validates a sweep file. @throws ir::ModelError at the offending
-/// key or value.
+/// Reads and validates a sweep file (a regular file of at most 1 MiB).
+/// @throws ir::ModelError at the offending key or value.
 ir::Sweep load_sweep_file(const std::string& path);
 ir::Sweep parse_sweep_text(const std::string& text, const std::string& display_path);
 
 /// The model file a sweep varies: its path as given, resolved against the
 /// sweep file's folder when relative.
 std::string sweep_model_path(const ir::Sweep& sweep);
+
+/// The text of the model file a sweep varies: a regular file (not a device, a
+/// pipe or a folder: every point reads it again) of at most
+/// ParseLimits::max_file_bytes. @throws ir::ModelError at the sweep's
+/// `model:` value naming the file and why.
+std::string read_sweep_model(const ir::Sweep& sweep);
 
 /// Checks that every `vary` path names an existing key of the model text.
 /// @throws ir::ModelError at the path in the sweep file ("beam 'deck' has no

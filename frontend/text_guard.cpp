@@ -52,6 +52,15 @@ bool opens_node_after(char last) {
 
 }  // namespace
 
+std::string utf8_prefix(const std::string& text, std::size_t max_bytes) {
+  if (text.size() <= max_bytes) return text;
+  std::size_t end = max_bytes;
+  // Back over continuation bytes (10xxxxxx) to the lead byte of the sequence
+  // the cut falls in, and cut before it.
+  while (end > 0 && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80) --end;
+  return text.substr(0, end);
+}
+
 std::optional<TextProblem> find_non_text(const std::string& text) {
   int line = 1;
   int column = 1;

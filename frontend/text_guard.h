@@ -23,6 +23,11 @@ struct TextProblem {
 /// control character (tab, LF and CR are fine) or a malformed UTF-8 sequence.
 std::optional<TextProblem> find_non_text(const std::string& text);
 
+/// The first at most `max_bytes` bytes of `text`, fewer when that would cut a
+/// UTF-8 sequence in two: what a message shows of a long value stays valid
+/// UTF-8 (JSON writers and Python refuse anything else).
+std::string utf8_prefix(const std::string& text, std::size_t max_bytes);
+
 /// Returns the first place where collections nest deeper than `max_depth`,
 /// counting flow brackets `[` `{`, block indentation levels and compact
 /// sequence dashes (`- - x`), or where the file holds more than `max_values`

@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "frontend/expression_parser.h"
+#include "frontend/text_guard.h"
 #include "ir/identifiers.h"
 
 namespace mbfe::frontend {
@@ -68,8 +69,10 @@ SourceLoc location_of(const YAML::Node& node) {
 
 std::string shown(const std::string& text) {
   std::string out;
-  for (std::size_t i = 0; i < text.size() && i < kMaxShownChars; ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
+  // Never half a UTF-8 character: the message may end up in JSON.
+  const std::string head = utf8_prefix(text, kMaxShownChars);
+  for (const char byte : head) {
+    const auto c = static_cast<unsigned char>(byte);
     if (c < 0x20 || c == 0x7F) {
       char escaped[8];
       std::snprintf(escaped, sizeof escaped, "\\x%02X", c);

@@ -64,6 +64,23 @@ const char* status_name(rt::SimulationStatus s) {
   return "?";
 }
 
+/// `text` as a Python str, invalid UTF-8 (a file name's bytes) as U+FFFD: a
+/// message PyErr_SetString cannot decode came out empty.
+py::str message_text(const std::string& text) {
+  PyObject* s = PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "replace");
+  if (!s) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(s);
+}
+
+/// A path or name that will name a file: a NUL would end it early (the C
+/// library stops there), so that "ok.yaml\0junk" would load ok.yaml.
+void refuse_nul(const std::string& text, const char* what) {
+  const auto nul = text.find('\0');
+  if (nul != std::string::npos)
+    throw py::value_error(std::string(what) + " holds a NUL character (at " + std::to_string(nul) +
+                          "), which no file name can hold");
+}
+
 py::object limit_value(const rt::StepLimit& l) {
   if (l.kind == rt::StepLimit::Kind::kFinite) return py::float_(l.h);
   if (l.kind == rt::StepLimit::Kind::kUnconditional) return py::float_(std::numeric_limits<double>::infinity());
@@ -72,14 +89,17 @@ py::object limit_value(const rt::StepLimit& l) {
 
 Result simulate(const Model& m, const std::string& integrator, std::optional<double> step,
                 std::optional<double> t_end, std::optional<bool> adjust, const std::vector<std::string>& probes,
-                long every, std::optional<bool> static_start, const std::string& formulation) {
+                std::optional<long> every, std::optional<bool> static_start, const std::string& formulation) {
+  // The command line's rule for --every: a positive whole number when given;
+  // absent, at most about 10,000 rows.
+  if (every && *every < 1) throw rt::InvalidInput("every must be a positive integer, got " + std::to_string(*every));
   rt::SimulationRequest r;
   r.integrator = rt::parse_integrator(integrator.empty() ? m.ir().simulation.integrator : integrator);
   r.step = step.value_or(m.ir().simulation.step);
   r.t_end = t_end.value_or(m.ir().simulation.t_end);
   r.adjust = adjust;
   for (const std::string& p : probes) r.probes.push_back(rt::parse_probe(p));
-  r.every = every;
+  r.every = every.value_or(0);  // 0: the runtime's automatic choice
   r.static_start = static_start;
   if (formulation == "augmented") r.formulation = rt::CoupledFormulation::kAugmented;
   else if (formulation != "partitioned") throw rt::InvalidInput("formulation: partitioned or augmented, got '" + formulation + "'");
@@ -124,9 +144,9 @@ PYBIND11_MODULE(mbfe, module) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const mbfe::ir::ModelError& e) {
-      model_error(e.what());
+      PyErr_SetObject(model_error.ptr(), message_text(e.what()).ptr());
     } catch (const rt::InvalidInput& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      PyErr_SetObject(PyExc_ValueError, message_text(e.what()).ptr());
     }
   });
 
@@ -196,9 +216,10 @@ PYBIND11_MODULE(mbfe, module) {
           "M, F, Q (and the constraints Phi, Jb, Jc, gamma) at a state, as numpy arrays")
       .def("simulate", &simulate, py::arg("integrator") = "", py::arg("step") = py::none(),
            py::arg("t_end") = py::none(), py::arg("adjust") = py::none(),
-           py::arg("probes") = std::vector<std::string>{}, py::arg("every") = 0,
+           py::arg("probes") = std::vector<std::string>{}, py::arg("every") = py::none(),
            py::arg("static_start") = py::none(), py::arg("formulation") = "partitioned",
-           "Integrates the model; missing arguments come from its simulation block")
+           "Integrates the model; missing arguments come from its simulation block; every: a positive "
+           "integer (absent: at most about 10,000 rows)")
       .def(
           "spectrum",
           [](const Model& m, bool adjusted) {
@@ -224,13 +245,18 @@ PYBIND11_MODULE(mbfe, module) {
 
   module.def(
       "load", [](const std::string& path, bool quiet) {
+        refuse_nul(path, "the path");
         mbfe::LoadOptions o;
         o.quiet = quiet;
         return Model::load(path, o);
       },
       py::arg("path"), py::arg("quiet") = true, "Reads a model file and gets its solver (compiled and cached on first use)");
   module.def(
-      "parse", [](const std::string& text, const std::string& name) { return Model::parse(text, name); },
+      "parse",
+      [](const std::string& text, const std::string& name) {
+        refuse_nul(name, "the name");
+        return Model::parse(text, name);
+      },
       py::arg("text"), py::arg("name") = "<string>", "A model from YAML text");
   module.attr("__version__") = MBFE_GENERATOR_VERSION;
 }

@@ -7,6 +7,7 @@
 #include "api/mbfe.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/json_text.h"
 
 namespace mbfe::tool {
 
@@ -89,15 +90,15 @@ int cmd_eval(const Args& args) {
     out["constraints"] = c;
   }
   if (parsed.has("json")) {
-    std::cout << out.dump() << "\n";
+    std::cout << json_text(out) << "\n";
   } else {
     std::cout << "coordinates:";
     for (const auto& b : model.ir().bodies) std::cout << " " << b.name;
-    std::cout << "\nM = " << out["M"].dump() << "\nF = " << out["F"].dump() << "\nQ = " << out["Q"].dump()
+    std::cout << "\nM = " << json_text(out["M"]) << "\nF = " << json_text(out["F"]) << "\nQ = " << json_text(out["Q"])
               << "\n";
     if (out.contains("constraints"))
       for (const char* key : {"Phi", "Jb", "Jc", "gamma"})
-        std::cout << key << " = " << out["constraints"][key].dump() << "\n";
+        std::cout << key << " = " << json_text(out["constraints"][key]) << "\n";
   }
   return 0;
 }

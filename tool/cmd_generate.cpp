@@ -4,6 +4,7 @@
 
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/file_checks.h"
 #include "generator/emit/generate_solver.h"
 #include "api/file_util.h"
 #include "frontend/parse_model.h"
@@ -34,10 +35,13 @@ int cmd_generate(const Args& args) {
   const auto out = parsed.value("o") ? parsed.value("o") : parsed.value("output");
   if (!out) throw UsageError("missing -o DIR (see --help)");
 
-  const ir::Model model = frontend::load_model_file(parsed.positional()[0]);
+  const std::string& model_path = parsed.positional()[0];
+  check_output_folder(*out, "-o", {model_path});
+  const ir::Model model = frontend::load_model_file(model_path);
   if (model.bodies.empty())
     throw UsageError("model '" + model.name + "' has no bodies: beams need no generated code (try mbfe modal)");
   const gen::GeneratedSolver solver = gen::generate_solver(model);  // everything in memory first
+  for (const auto& file : solver.files) check_output_file(*out + "/" + file.name, "-o", {model_path}, true);
   std::filesystem::create_directories(*out);
   for (const auto& file : solver.files) write_file_atomically(*out + "/" + file.name, file.text);
   if (!parsed.has("quiet")) {

@@ -14,6 +14,7 @@
 #include "runtime/errors/invalid_input.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/json_text.h"
 #include "tool/linearization_notice.h"
 #include "tool/modal_report.h"
 #include "tool/plot_spectrum.h"
@@ -191,7 +192,7 @@ int cmd_modal(const Args& args) {
       add_adjusted_json(beam, *chosen[i], results[i]);
       root["beams"].push_back(std::move(beam));
     }
-    std::cout << root.dump(2) << "\n";
+    std::cout << json_text(root, 2) << "\n";
     return 0;
   }
   for (size_t i = 0; i < results.size(); ++i) {

@@ -1,7 +1,6 @@
 // `mbfe plot results.csv -o out.png [--columns a,b] [--x COLUMN] [--title T]`:
 // columns of a simulation CSV drawn by gnuplot, one panel per kind of quantity,
 // axes labelled with their units.
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -10,8 +9,10 @@
 
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/file_checks.h"
 #include "tool/plot_columns.h"
 #include "tool/plot_gnuplot.h"
+#include "tool/results_columns.h"
 
 namespace mbfe::tool {
 
@@ -33,7 +34,9 @@ Options:
                       e.g. a vehicle's position
   --title TEXT        title of the plot (default: the CSV's file name)
 
-Exit status: 0 drawn; 2 bad input or gnuplot missing; 1 gnuplot failed.
+Exit status: 0 drawn; 2 bad input (a missing or unreadable CSV, a .npy, an
+unknown column, -o into a missing folder, onto a folder or onto the CSV
+itself) or gnuplot missing; 1 gnuplot failed.
 
 Example:
   mbfe simulate models/paper_beam.yaml --integrator forward_euler --step 1.4e-5 --t-end 1 \
@@ -72,20 +75,16 @@ int cmd_plot(const Args& raw) {
   const auto out = parsed.value("out");
   if (!out || out->empty()) throw UsageError("-o OUT.png is required");
   const std::string& csv = parsed.positional()[0];
-
-  std::ifstream in(csv);
-  if (!in) {
-    std::cerr << "mbfe plot: cannot open '" << csv << "'\n";
-    return 2;
-  }
-  std::string header_line, first_row;
-  std::getline(in, header_line);
-  std::getline(in, first_row);
-  const std::vector<std::string> header = split(header_line, ',');
-  if (header.size() < 2 || first_row.empty()) {
-    std::cerr << "mbfe plot: " << csv << ": expected a header line with at least two columns and one data row\n";
-    return 2;
-  }
+  if (csv.size() >= 4 && csv.compare(csv.size() - 4, 4, ".npy") == 0)
+    throw UsageError(csv + ": mbfe plot draws a CSV (gnuplot reads its rows); write one with mbfe simulate --out "
+                           "FILE.csv (mbfe stats reads a .npy)");
+  // The picture must not land on the CSV it draws, or on its sidecar, and
+  // must have a folder to go into: bad input, before gnuplot starts.
+  check_output_file(*out, "-o", {csv, csv + ".json"});
+  bool has_rows = false;
+  const std::vector<std::string> header = read_csv_header(csv, has_rows);
+  if (header.size() < 2 || !has_rows)
+    throw UsageError(csv + ": expected a header line with at least two columns and one data row");
   auto index_of = [&](const std::string& name, const char* flag) {
     std::size_t i = 0;
     while (i < header.size() && header[i] != name) ++i;

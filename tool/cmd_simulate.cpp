@@ -10,6 +10,8 @@
 #include "api/mbfe.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/file_checks.h"
+#include "tool/json_text.h"
 #include "tool/results_output.h"
 #include "tool/vtk_animation.h"
 
@@ -36,7 +38,8 @@ Options:
   --integrator NAME  forward_euler, backward_euler, explicit_midpoint, trapezoid,
                      rk4, generalized_alpha (beams, coupled), ab2, bdf2,
                      lmm:alpha=a0,..,ak:beta=b0,..,bk
-  --step H           step in s
+  --step H           step in s (one longer than the run is shortened to the
+                     run; more than 2^53 steps are refused)
   --t-end T          end time in s
   --out FILE.csv     output file (default: standard output); FILE.npy writes a
                      NumPy array (rows x columns, numpy.load reads it) instead;
@@ -63,10 +66,15 @@ Options:
                      its frames (beams' deformed axes, bodies through their
                      points, spring contact forces; docs/animation.md)
   --vtk-scale S      deflections drawn S times enlarged (default 1)
-  --vtk-frames N     at most N frames, evenly spaced in time (default 200)
+  --vtk-frames N     at most N frames, evenly spaced in time (default 200,
+                     at most 10000)
   --strict           an initial state that violates the contacts is an error
                      (exit 2) instead of being projected onto them
   --quiet            no progress or cache messages on stderr
+
+An output (--out, its sidecar, the --vtk folder) that is the model file, a
+folder where a file goes (or a file where the folder goes), or in a folder
+that does not exist is bad input, refused before the model is read.
 
 Exit status: 0 done; 2 bad input; 3 the simulation diverged or failed part-way
 (everything computed up to there is in the output, flushed).
@@ -193,7 +201,7 @@ void write_sidecar(const std::string& csv_path, const Model& model, const runtim
     links.push_back({{"name", l.name}, {"slackenings", l.slackenings}, {"time_slack", l.time_slack}});
   if (!links.empty()) j["links"] = links;
   std::ofstream out(csv_path + ".json");
-  out << j.dump(2) << "\n";
+  out << json_text(j, 2) << "\n";
 }
 
 /// "mbfe: contact 'tyre': 2 lift-offs, 0.0123 s off contact" per slider_spring.
@@ -217,25 +225,49 @@ int cmd_simulate(const Args& args) {
     return 0;
   }
   if (parsed.positional().size() != 1) throw UsageError("expected one model file (see --help)");
-  LoadOptions load;
-  load.quiet = parsed.has("quiet");
-  const Model model = Model::load(parsed.positional()[0], load);
-  runtime::SimulationRequest request = request_of(parsed, model.ir());
-  std::unique_ptr<VtkAnimation> vtk;
-  if (const auto dir = parsed.value("vtk")) {
-    const double scale = parsed.number("vtk-scale").value_or(1.0);
-    const double frames = parsed.number("vtk-frames").value_or(200.0);
+  const std::string& model_path = parsed.positional()[0];
+  // Every output checked before the model is even read: never over the model
+  // file (whatever the names), never into a missing folder or onto a folder.
+  const auto out = parsed.value("out");
+  if (out && !out->empty()) {
+    check_output_file(*out, "--out", {model_path});
+    check_output_file(*out + ".json", "--out (its sidecar)", {model_path});
+  }
+  if (const auto probe = parsed.value("probe")) {
+    const std::vector<std::string> labels = split_commas(*probe);
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (labels[i] == labels[j])
+          throw UsageError("--probe: '" + labels[i] + "' is given twice; each probe is a column and needs a name of its own");
+  }
+  const auto vtk_dir = parsed.value("vtk");
+  const double frames = parsed.number("vtk-frames").value_or(200.0);
+  if (vtk_dir) {
+    check_output_folder(*vtk_dir, "--vtk", {model_path});
     if (!(frames >= 1) || frames != std::floor(frames)) throw UsageError("--vtk-frames must be a positive whole number");
-    request.state_in_rows = true;  // the frames need every coordinate
-    vtk = std::make_unique<VtkAnimation>(model, *dir, scale, static_cast<int>(frames), request.t_end);
+    if (frames > kMaxVtkFrames)
+      throw UsageError("--vtk-frames: at most " + std::to_string(kMaxVtkFrames) + " frames (a file each), got " +
+                       parsed.value("vtk-frames").value_or(""));
   } else if (parsed.has("vtk-scale") || parsed.has("vtk-frames")) {
     throw UsageError("--vtk-scale and --vtk-frames go with --vtk DIR");
+  }
+  LoadOptions load;
+  load.quiet = parsed.has("quiet");
+  const Model model = Model::load(model_path, load);
+  runtime::SimulationRequest request = request_of(parsed, model.ir());
+  std::unique_ptr<VtkAnimation> vtk;
+  if (vtk_dir) {
+    check_output_file((std::filesystem::path(*vtk_dir) / (model.ir().name + ".pvd")).string(), "--vtk", {model_path},
+                      true);
+    check_output_folder((std::filesystem::path(*vtk_dir) / "frames").string(), "--vtk", {model_path});
+    const double scale = parsed.number("vtk-scale").value_or(1.0);
+    request.state_in_rows = true;  // the frames need every coordinate
+    vtk = std::make_unique<VtkAnimation>(model, *vtk_dir, scale, static_cast<int>(frames), request.t_end);
   }
   if (parsed.has("formulation") && model.kind() != runtime::ModelKind::kCoupled)
     throw UsageError("--formulation applies to coupled models (bodies, beams and contacts) only");
   model.assembled();  // a beam the analysis refuses is bad input before the output file is opened
 
-  const auto out = parsed.value("out");
   ResultsOutput csv(out.value_or(""));
   ResultsObserver observer(csv);
   runtime::SimulationReport report;

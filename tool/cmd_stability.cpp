@@ -17,6 +17,7 @@
 #include "api/mbfe.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/json_text.h"
 #include "tool/linearization_notice.h"
 
 namespace mbfe::tool {
@@ -118,7 +119,7 @@ int cmd_stability(const Args& args) {
     nlohmann::json root;
     root["original"] = limits_json(limits, false);
     root["adjusted"] = any_adjustment ? limits_json(limits, true) : nlohmann::json(nullptr);
-    std::cout << root.dump(2) << "\n";
+    std::cout << json_text(root, 2) << "\n";
     return 0;
   }
   auto fastest = [](const runtime::StateSpectrum& s) {

@@ -1,13 +1,16 @@
 // `mbfe stats RESULTS.csv --column NAME [--lowpass HZ] [--from T] [--to T] [--json]`:
 // the contact-force statistics of EN 50318 (runtime/signal/force_statistics.h).
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 
 #include "runtime/signal/force_statistics.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/json_text.h"
 #include "tool/results_columns.h"
 
 namespace mbfe::tool {
@@ -16,15 +19,18 @@ namespace {
 
 constexpr const char* kHelp = R"(Usage: mbfe stats RESULTS.csv --column NAME [options]
 
-Statistics of one column of a results CSV over a time window, as EN 50318
+Statistics of one column of a results file (the CSV, or the .npy with its
+.npy.json, that mbfe simulate writes) over a time window, as EN 50318
 asks of a pantograph's contact force: mean, std (population, divided by n),
 statistical_max and statistical_min (mean +- 3 std), max and min, all of the
 low-pass filtered signal, and loss_percent, the share of the window's samples
 where the unfiltered value is <= 0 (contact lost).
 
-The filter is a Butterworth low-pass run forward and backward (zero phase),
-over the whole signal before the window is cut; it needs evenly spaced rows
-(write them with mbfe simulate --every N).
+The filter is a Butterworth low-pass (second-order sections) run forward and
+backward (zero phase), over the whole signal before the window is cut; it
+needs evenly spaced rows (write them with mbfe simulate --every N) and a
+cut-off of at least 1e-5 of their rate. Times must increase strictly, and a
+NaN or infinite time or value is refused with its line (exit status 2).
 
 Options:
   --column NAME   the column (e.g. force_contact)
@@ -66,10 +72,22 @@ int cmd_stats(const Args& args) {
   if (const auto from = parsed.number("from")) options.from = *from;
   if (const auto to = parsed.number("to")) options.to = *to;
   if (options.from > options.to) throw UsageError("--from must not be after --to");
-  const std::vector<std::vector<double>> cols = read_columns(parsed.positional()[0], {"t", *column});
+  const ResultColumns cols = read_columns(parsed.positional()[0], {"t", *column});
+  const std::vector<double>& t = cols.values[0];
+  const std::vector<double>& values = cols.values[1];
   runtime::ForceStatistics s;
   try {
-    s = runtime::force_statistics(cols[0], cols[1], options);
+    s = runtime::force_statistics(t, values, options);
+  } catch (const runtime::BadSample& e) {
+    const std::size_t i = e.sample;
+    if (!std::isfinite(t[i]) || !std::isfinite(values[i])) {
+      const bool time = !std::isfinite(t[i]);
+      std::ostringstream os;
+      os << cols.where(i) << ": column '" << (time ? "t" : *column) << "' is " << (time ? t[i] : values[i])
+         << "; the statistics take finite numbers only";
+      throw UsageError(os.str());
+    }
+    throw UsageError(cols.where(i) + ": " + e.what());
   } catch (const std::invalid_argument& e) {
     throw UsageError(parsed.positional()[0] + ": " + e.what());
   }
@@ -82,7 +100,7 @@ int cmd_stats(const Args& args) {
     j["max"] = s.max;
     j["min"] = s.min;
     j["loss_percent"] = s.loss_percent;
-    std::cout << j.dump(2) << "\n";
+    std::cout << json_text(j, 2) << "\n";
     return 0;
   }
   std::cout << "'" << *column << "', " << s.samples << " samples"

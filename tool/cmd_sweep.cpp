@@ -20,6 +20,7 @@
 #include "generator/emit/generate_solver.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/file_checks.h"
 #include "tool/sweep_point.h"
 #include "tool/sweep_slurm.h"
 
@@ -52,9 +53,11 @@ DIR/summary.json list each point's values, status and collected statistics.
                    sbatch's --partition, --time and the %K of --array
   --dry-run        with --slurm: write DIR/slurm/*.sbatch, do not submit
 
-A re-run skips points already done (for the same point model); failed points
-run again. A failed point (bad combination, divergence) is recorded with its
-message and exit status; the others go on.
+A re-run skips points already done for the same request (the point's model
+file, the simulate: block and the collect: entries); failed points, and points
+whose result is of another request, run again. A failed point (bad
+combination, divergence) is recorded with its message and exit status; the
+others go on.
 
 Exit status: 0 every point done; 2 bad sweep file or flags; 3 some point failed
 (the summary says which).
@@ -62,14 +65,6 @@ Exit status: 0 every point done; 2 bad sweep file or flags; 3 some point failed
 Example:
   mbfe sweep models/sweeps/bridge_speeds.yaml --out speeds --jobs 2
 )";
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UsageError(path + ": cannot read the model file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::string self_exe() {
   std::error_code ec;
@@ -113,10 +108,17 @@ int run_local(const ir::Sweep& sweep, const std::string& sweep_file, const std::
               const std::string& out_dir, long jobs, bool quiet) {
   const long n = sweep.points();
   std::vector<long> todo;
+  long stale = 0;
   for (long i = 0; i < n; ++i) {
-    const auto r = read_point_result(sweep, model_text, out_dir, i);
+    bool other_request = false;
+    const auto r = read_point_result(sweep, model_text, out_dir, i, &other_request);
     if (!r || !r->done) todo.push_back(i);
+    stale += other_request ? 1 : 0;
   }
+  if (stale > 0 && !quiet)
+    std::cerr << "mbfe sweep: " << stale << " point" << (stale == 1 ? " holds a result" : "s hold results")
+              << " of another request (the model, the point's values, simulate: or collect: changed); "
+              << (stale == 1 ? "it runs" : "they run") << " again\n";
   if (!quiet)
     std::cerr << "mbfe sweep: " << sweep.name << ": " << n << " points, " << (n - static_cast<long>(todo.size()))
               << " already done, " << todo.size() << " to run on " << jobs << " job" << (jobs == 1 ? "" : "s") << "\n";
@@ -191,9 +193,26 @@ int cmd_sweep(const Args& args) {
   const std::string model_path = frontend::sweep_model_path(sweep);
   if (!fs::exists(model_path))
     throw ir::ModelError(sweep.source_path, sweep.model_loc, "model file '" + model_path + "' does not exist");
-  const std::string model_text = slurp(model_path);
+  const std::string model_text = frontend::read_sweep_model(sweep);
   frontend::check_sweep_paths(sweep, model_text);
   const long n = sweep.points();
+  // The summary and the points go into DIR: it must be a folder, and its
+  // summary must not be one of the sweep's own files.
+  check_output_folder(*out, "--out", {sweep_file, model_path});
+  for (const char* name : {"summary.csv", "summary.json"})
+    check_output_file((fs::path(*out) / name).string(), "--out", {sweep_file, model_path}, true);
+  SlurmOptions slurm;
+  if (parsed.has("slurm")) {
+    slurm.partition = parsed.value("partition").value_or("");
+    slurm.time = parsed.value("time").value_or("");
+    if (const auto k = parsed.number("array-limit")) {
+      if (*k < 1 || *k != std::floor(*k)) throw UsageError("--array-limit must be a positive whole number");
+      slurm.array_limit = static_cast<long>(*k);
+    }
+    slurm.dry_run = parsed.has("dry-run");
+    // Before anything is created: a newline in --out would write DIR too.
+    check_slurm_arguments(self_exe(), fs::absolute(sweep_file).string(), fs::absolute(*out).string(), slurm);
+  }
   fs::create_directories(*out);
 
   if (const auto point = parsed.number("point")) {
@@ -205,26 +224,21 @@ int cmd_sweep(const Args& args) {
   }
   if (parsed.has("collect")) {
     const SweepCounts c = write_summary(sweep, model_text, *out);
-    if (!quiet) std::cerr << "mbfe sweep: " << c.done << " done, " << c.failed << " failed, " << c.missing << " missing\n";
+    if (!quiet)
+      std::cerr << "mbfe sweep: " << c.done << " done, " << c.failed << " failed, " << c.missing << " missing"
+                << (c.stale ? " (" + std::to_string(c.stale) + " with a result of another request)" : "") << "\n";
     return c.failed + c.missing == 0 ? 0 : 3;
   }
   if (parsed.has("slurm")) {
-    SlurmOptions options;
-    options.partition = parsed.value("partition").value_or("");
-    options.time = parsed.value("time").value_or("");
-    if (const auto k = parsed.number("array-limit")) {
-      if (*k < 1 || *k != std::floor(*k)) throw UsageError("--array-limit must be a positive whole number");
-      options.array_limit = static_cast<long>(*k);
-    }
-    options.dry_run = parsed.has("dry-run");
+    const SlurmOptions& options = slurm;
     // The tasks find their solvers in DIR/cache, compiled here where the compiler is.
     ::setenv("MBFE_CACHE_DIR", (fs::absolute(*out) / "cache").c_str(), 1);
     precompile(sweep, model_text, *out, quiet);
     const SlurmSubmission s = submit_slurm_sweep(self_exe(), sweep_file, *out, sweep.name, n, options);
     if (options.dry_run) {
       std::cout << "mbfe sweep: wrote " << s.points_script << " and " << s.collect_script << " (" << n
-                << " points); submit with\n  sbatch " << s.points_script << "\n  sbatch --dependency=afterany:<array job> "
-                << s.collect_script << "\n";
+                << " points); submit with\n  sbatch " << shell_word(s.points_script)
+                << "\n  sbatch --dependency=afterany:<array job> " << shell_word(s.collect_script) << "\n";
     } else {
       std::cout << "mbfe sweep: submitted job array " << s.array_job << " (" << n << " points) and collect job "
                 << s.collect_job << "; the summary will be " << *out << "/summary.csv\n";

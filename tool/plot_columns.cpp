@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 
@@ -9,6 +11,13 @@ namespace mbfe::tool {
 
 std::map<std::string, std::string> sidecar_units(const std::string& csv_path) {
   std::map<std::string, std::string> out;
+  std::error_code ec;
+  // Not a device or a pipe, and no larger than a sidecar of mbfe gets (its
+  // column names: tens of bytes each).
+  constexpr std::uintmax_t kMaxSidecarBytes = std::uintmax_t{512} << 20;
+  if (!std::filesystem::is_regular_file(csv_path + ".json", ec) ||
+      std::filesystem::file_size(csv_path + ".json", ec) > kMaxSidecarBytes || ec)
+    return out;
   std::ifstream in(csv_path + ".json");
   if (!in) return out;
   try {

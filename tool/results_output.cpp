@@ -1,5 +1,7 @@
 #include "tool/results_output.h"
 
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -46,6 +48,8 @@ ResultsOutput::ResultsOutput(const std::string& path) : path_(path), npy_(ends_w
     // input: UsageError, exit status 2, before anything is computed.
     if (!file_) throw UsageError(path + ": cannot write the output: " + std::strerror(errno));
     owned_ = true;
+    struct stat info {};
+    regular_ = ::fstat(fileno(file_), &info) == 0 && S_ISREG(info.st_mode);
   }
 }
 
@@ -66,7 +70,9 @@ void ResultsOutput::discard_if_empty() {
   if (!owned_ || !file_ || rows_ > 0) return;
   std::fclose(file_);
   file_ = nullptr;
-  std::remove(path_.c_str());
+  // Only a file: --out /dev/null or a pipe is not ours to remove (as root,
+  // removing /dev/null breaks every program on the machine).
+  if (regular_) std::remove(path_.c_str());
 }
 
 void ResultsOutput::header(const std::vector<std::string>& columns) {

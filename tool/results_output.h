@@ -30,13 +30,15 @@ class ResultsOutput {
   void row(const double* values, std::size_t count);
   void flush();
   /// Closes and removes the file when no row has been written: bad input
-  /// found after the file was opened leaves nothing behind.
+  /// found after the file was opened leaves nothing behind. Only a regular
+  /// file is removed: a device (/dev/null) or a pipe stays.
   void discard_if_empty();
   std::size_t rows() const { return rows_; }
 
  private:
   std::FILE* file_ = nullptr;
   bool owned_ = false;
+  bool regular_ = false;  // a regular file (not a device or a pipe)
   std::size_t rows_ = 0;
   std::string path_;
   std::string line_;  // the row being formatted

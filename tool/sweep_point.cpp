@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -11,6 +12,8 @@
 
 #include "api/mbfe.h"
 #include "frontend/parse_sweep.h"
+#include "frontend/sha256.h"
+#include "tool/json_text.h"
 #include "tool/results_output.h"
 
 namespace mbfe::tool {
@@ -20,8 +23,20 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr const char* kStaleMessage =
+    "its result is of another request (the model, the point's values, simulate: or collect: changed since); "
+    "running the sweep again runs it";
 
+// A point's own files: its model.yaml (at most the 16 MiB of a model file) and
+// result.json (statistics and one message).
+constexpr std::uintmax_t kMaxPointFileBytes = std::uintmax_t{32} << 20;
+
+/// A point's file, or "" when it is not a regular file of at most
+/// kMaxPointFileBytes (a device put in its place is not read without end):
+/// the point then counts as not run.
 std::string slurp(const fs::path& p) {
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec) || fs::file_size(p, ec) > kMaxPointFileBytes || ec) return "";
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();
@@ -125,9 +140,26 @@ runtime::SimulationRequest request_of(const ir::Sweep& sweep, const ir::Model& m
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-void write_result(const fs::path& dir, const ir::Sweep& sweep, const PointResult& r) {
+/// What produced a point's result, hashed: the point's model text (the varied
+/// values put in), the sweep's simulate block and its collect entries. A
+/// stored result of another request does not count.
+std::string request_sha256(const ir::Sweep& sweep, const std::string& point_text) {
+  const ir::SweepSimulation& s = sweep.simulation;
+  nlohmann::json j;
+  j["model"] = point_text;
+  j["simulate"] = {{"integrator", s.integrator}, {"step", s.step},       {"t_end", s.t_end},
+                   {"probes", s.probes},         {"adjust", s.adjust}};
+  nlohmann::json collect = nlohmann::json::array();
+  for (const ir::SweepCollect& c : sweep.collect)
+    collect.push_back({{"name", c.name}, {"column", c.column}, {"stat", static_cast<int>(c.stat)}});
+  j["collect"] = collect;
+  return frontend::sha256_hex(json_text(j));
+}
+
+void write_result(const fs::path& dir, const ir::Sweep& sweep, const PointResult& r, const std::string& request) {
   nlohmann::json j;
   j["point"] = r.point;
+  j["request_sha256"] = request;
   j["status"] = r.done ? "done" : "failed";
   j["exit_status"] = r.exit_status;
   j["message"] = r.message;
@@ -135,7 +167,7 @@ void write_result(const fs::path& dir, const ir::Sweep& sweep, const PointResult
   nlohmann::json stats = nlohmann::json::object();
   for (std::size_t k = 0; k < sweep.collect.size(); ++k) stats[sweep.collect[k].name] = number_or_null(r.stats[k]);
   j["stats"] = stats;
-  write_atomically(dir / "result.json", j.dump(2) + "\n");
+  write_atomically(dir / "result.json", json_text(j, 2) + "\n");
 }
 
 /// A CSV field: quoted when it holds a comma, a quote or a line break.
@@ -195,17 +227,25 @@ PointResult run_sweep_point(const ir::Sweep& sweep, const std::string& model_tex
     r.message = e.what();
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_result(dir, sweep, r);
+  write_result(dir, sweep, r, request_sha256(sweep, text));
   return r;
 }
 
 std::optional<PointResult> read_point_result(const ir::Sweep& sweep, const std::string& model_text,
-                                             const std::string& out_dir, long i) {
+                                             const std::string& out_dir, long i, bool* stale) {
+  if (stale) *stale = false;
   const fs::path dir = point_dir(out_dir, i);
   if (!fs::exists(dir / "result.json") || !fs::exists(dir / "model.yaml")) return std::nullopt;
-  if (slurp(dir / "model.yaml") != frontend::point_model_text(sweep, model_text, i)) return std::nullopt;
+  const std::string text = frontend::point_model_text(sweep, model_text, i);
   try {
     const nlohmann::json j = nlohmann::json::parse(slurp(dir / "result.json"));
+    // Another request (model, values, simulate: or collect: changed, or a
+    // result written before requests were recorded): not this point's result.
+    if (slurp(dir / "model.yaml") != text || !j.contains("request_sha256") ||
+        j.at("request_sha256") != request_sha256(sweep, text)) {
+      if (stale) *stale = true;
+      return std::nullopt;
+    }
     PointResult r;
     r.point = i;
     r.done = j.at("status") == "done";
@@ -232,7 +272,10 @@ SweepCounts write_summary(const ir::Sweep& sweep, const std::string& model_text,
   csv << ",wall_s,message\n";
   nlohmann::json points = nlohmann::json::array();
   for (long i = 0; i < sweep.points(); ++i) {
-    const std::optional<PointResult> r = read_point_result(sweep, model_text, out_dir, i);
+    bool stale = false;
+    const std::optional<PointResult> r = read_point_result(sweep, model_text, out_dir, i, &stale);
+    if (stale) ++counts.stale;
+    const std::string message = r ? r->message : stale ? kStaleMessage : "";
     const std::vector<int> idx = sweep.indices(i);
     nlohmann::json p;
     p["point"] = i;
@@ -253,11 +296,11 @@ SweepCounts write_summary(const ir::Sweep& sweep, const std::string& model_text,
       csv << "," << number_text(v);
       stats[sweep.collect[k].name] = number_or_null(v);
     }
-    csv << "," << (r ? number_text(r->wall_seconds) : "") << "," << csv_field(r ? r->message : "") << "\n";
+    csv << "," << (r ? number_text(r->wall_seconds) : "") << "," << csv_field(message) << "\n";
     p["status"] = status;
     p["exit_status"] = r ? nlohmann::json(r->exit_status) : nlohmann::json(nullptr);
     p["stats"] = stats;
-    p["message"] = r ? r->message : "";
+    p["message"] = message;
     p["model"] = (fs::path("points") / std::to_string(i) / "model.yaml").string();
     points.push_back(p);
   }
@@ -271,7 +314,7 @@ SweepCounts write_summary(const ir::Sweep& sweep, const std::string& model_text,
   summary["missing"] = counts.missing;
   fs::create_directories(out_dir);
   write_atomically(fs::path(out_dir) / "summary.csv", csv.str());
-  write_atomically(fs::path(out_dir) / "summary.json", summary.dump(2) + "\n");
+  write_atomically(fs::path(out_dir) / "summary.json", json_text(summary, 2) + "\n");
   return counts;
 }
 

@@ -30,13 +30,17 @@ std::string point_dir(const std::string& out_dir, long i);
 PointResult run_sweep_point(const ir::Sweep& sweep, const std::string& model_text, const std::string& out_dir,
                             long i);
 
-/// The result file of point i, if there is one for the current model text of
-/// that point (a result of an older version of the sweep does not count).
+/// The result file of point i, if there is one for the point's current
+/// request: its model text (the base model with the point's values), the
+/// sweep's simulate block and collect entries (result.json records their
+/// SHA-256). A result of another request does not count (*stale, if given, is
+/// set): the point runs again rather than mix old numbers into the summary.
 std::optional<PointResult> read_point_result(const ir::Sweep& sweep, const std::string& model_text,
-                                             const std::string& out_dir, long i);
+                                             const std::string& out_dir, long i, bool* stale = nullptr);
 
 struct SweepCounts {
   long done = 0, failed = 0, missing = 0;
+  long stale = 0;  // of the missing: a result of another request is there
 };
 
 /// Writes DIR/summary.csv and DIR/summary.json from the result files present.

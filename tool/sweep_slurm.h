@@ -19,6 +19,17 @@ struct SlurmSubmission {
   std::string array_job, collect_job;         // job ids (empty on a dry run)
 };
 
+/// `s` as one word for bash (single-quoted), as the scripts quote paths.
+std::string shell_word(const std::string& s);
+
+/// Refuses (UsageError, exit status 2) what a Slurm script cannot carry: a
+/// control character (a newline would end a line of the script and start
+/// another) in any argument, a backslash in `out_dir` (it would stop Slurm
+/// from expanding %a in the log names), a partition or time other than
+/// letters, digits and _ . , : - . Every path in the scripts is quoted.
+void check_slurm_arguments(const std::string& mbfe, const std::string& sweep_file, const std::string& out_dir,
+                           const SlurmOptions& options);
+
 /// Writes DIR/slurm/points.sbatch and DIR/slurm/collect.sbatch for `points`
 /// tasks and, unless a dry run, submits them with sbatch (the collect job
 /// --dependency=afterany on the array). `mbfe` and the sweep file are given

@@ -18,6 +18,11 @@
 
 namespace mbfe::tool {
 
+/// Frames an animation may have: each is a file (a few kB for a small model,
+/// megabytes for a large one); 10,000 frames at 25 per second is nearly 7
+/// minutes of film.
+constexpr int kMaxVtkFrames = 10000;
+
 class VtkAnimation : public runtime::SimulationObserver {
  public:
   /// @param frames at most this many frames, evenly spaced in time over [0, t_end].

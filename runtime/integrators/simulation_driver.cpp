@@ -92,12 +92,23 @@ SimulationResult run_simulation(OdeSystem& system, const IntegratorSpec& integra
   }
   if (!y0.allFinite()) throw std::invalid_argument("initial state is not finite");
 
-  const double h = options.step;
   const double span = options.t_end - options.t0;
+  // A step longer than the whole run is shortened to the run: one step to
+  // t_end (it took none and called that completed).
+  const double h = options.step > span && span > 0.0 ? span : options.step;
   // Steps: one-step methods shorten the last one to land on t_end; multistep
   // methods keep h and stop at the last full step.
   constexpr double kTimeSlack = 1e-9;  // of a step: absorbs rounding in span / h
   const double ratio = span / h;
+  // Step numbers k and times t0 + k h stay exact up to 2^53 steps; beyond,
+  // the count would not even fit the int64 it is cast to.
+  constexpr double kMaxSteps = 9007199254740992.0;  // 2^53
+  if (!(ratio <= kMaxSteps)) {
+    std::ostringstream msg;
+    msg << "the run needs " << ratio << " steps ((t_end - t0) / step = " << span << " s / " << h
+        << " s), more than the limit of " << static_cast<std::int64_t>(kMaxSteps) << " (2^53)";
+    throw std::invalid_argument(msg.str());
+  }
   const bool one_step = is_one_step(integrator.kind);
   const std::int64_t full_steps = static_cast<std::int64_t>(std::floor(ratio + kTimeSlack));
   const bool partial_last = one_step && ratio - full_steps > kTimeSlack;

@@ -44,7 +44,8 @@ struct SimulationOptions {
   double step = 0.0;   // s, > 0
   double t_end = 0.0;  // s, >= t0; the last step is shortened to land on t_end
                        // (one-step methods only; multistep methods stop at the
-                       // last full step <= t_end + step * 1e-9)
+                       // last full step <= t_end + step * 1e-9). A step longer
+                       // than t_end - t0 is shortened to it: one step.
   /// Emit every `every`-th step. 0 = automatic: every = ceil(steps / max_rows),
   /// so at most about max_rows + 2 rows are written.
   std::int64_t every = 0;
@@ -84,7 +85,8 @@ using RowSink = std::function<void(double t, const Eigen::VectorXd& y)>;
 /// Integrates `system` from y0 (size system.size()). Never throws for a
 /// numerical fault of the system: that is kFailed with `message` (rows so far
 /// emitted). @throws std::invalid_argument for bad options (step <= 0,
-/// t_end < t0, y0 of the wrong size) or an integrator the system cannot take.
+/// t_end < t0, more than 2^53 steps, y0 of the wrong size) or an integrator
+/// the system cannot take.
 SimulationResult run_simulation(OdeSystem& system, const IntegratorSpec& integrator,
                                 const Eigen::VectorXd& y0, const SimulationOptions& options,
                                 const RowSink& sink);

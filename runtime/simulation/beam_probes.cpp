@@ -35,6 +35,10 @@ std::vector<BeamProbe> resolve_probes(const std::vector<ProbeSpec>& specs, const
                                       const BeamModel& beams) {
   std::vector<BeamProbe> out;
   for (const ProbeSpec& spec : specs) {
+    // The label is the column's name: two alike would be two columns of one name.
+    for (const BeamProbe& earlier : out)
+      if (earlier.label == spec.label)
+        throw InvalidInput("--probe '" + spec.label + "' is given twice; each probe is a column and needs a name of its own");
     BeamProbe p;
     p.label = spec.label;
     for (std::size_t i = 0; i < model.beams.size(); ++i)

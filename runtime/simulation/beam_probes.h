@@ -33,7 +33,8 @@ struct BeamProbe {
   double value(const double* qc) const;
 };
 
-/// @throws InvalidInput naming the probe for an unknown beam or S off the beam.
+/// @throws InvalidInput naming the probe for an unknown beam, S off the beam, or
+///         a label given twice (the labels are column names).
 std::vector<BeamProbe> resolve_probes(const std::vector<ProbeSpec>& specs, const ir::Model& model,
                                       const BeamModel& beams);
 

@@ -41,6 +41,10 @@
 //   name_double_underscore, name_too_long, point_name_with_space, name_true
 // - very long strings: long_string_as_number, long_unknown_key, name_too_long
 // - deep nesting: deep_brackets, deep_braces_unclosed, deep_indentation, deep_dashes
+// - output columns that would share a name: output_name_t, output_name_phi_abs,
+//   output_name_rate_clash (bodies a and a_dot), output_name_drive_clash,
+//   output_name_beam_coordinate (a body deck_w3 beside beam deck),
+//   output_name_contact_force, output_name_pin_multiplier, output_name_link_tension
 // - binary garbage and non-text: garbage.bin (written by make_garbage.py), nul_byte,
 //   invalid_utf8, control_character
 // A truly empty (0-byte) file cannot carry the header; parse_model_test covers it.

@@ -79,6 +79,29 @@ TEST(ParseModel, ShippedRigidModelsParse) {
             JointType::kPrismatic);
 }
 
+TEST(ParseModel, NamesThatOnlyLookLikeOutputColumnsAreTaken) {
+  // The refused clashes are in tests/malformed/output_name_*.yaml; these
+  // write no column twice: a body a_dot without a body a, phi_abs and force_x
+  // in a model without beams (no such columns), deck_w11 beside a beam deck
+  // of 10 elements (nodes 0..10), deck_w03 (not how a node is written), time.
+  const std::string beam =
+      "beams:\n  - {name: deck, origin: [0, 0], length: 1.0, elements: 10, section: {shape: square, side: 0.005},\n"
+      "     material: {youngs_modulus: 2.1e11, density: 7860}, supports: [{at: 0.0, type: pinned}, {at: 1.0, type: pinned}]}\n";
+  auto model = [](const std::vector<std::string>& names, const std::string& rest) {
+    std::string text = "model: m\nbodies:\n";
+    std::string parent = "ground";
+    for (const std::string& n : names) {
+      text += "  - {name: " + n + ", parent: " + parent + ", joint: {type: revolute}, mass: 1, inertia: 0.1}\n";
+      parent = n;
+    }
+    return text + rest;
+  };
+  EXPECT_EQ(error_of(model({"a_dot", "phi_abs", "force_x", "time", "lambda_c_1", "tension_d"}, "")), "(accepted)");
+  EXPECT_EQ(error_of(model({"deck_w11", "deck_w03", "deck_dw11", "a_drive"}, beam)), "(accepted)");
+  EXPECT_NE(error_of(model({"deck_w10"}, beam)).find("a coordinate of beam 'deck' (node 10)"), std::string::npos);
+  EXPECT_NE(error_of(model({"deck_dw0_dot"}, beam)).find("a coordinate of beam 'deck' (node 0)"), std::string::npos);
+}
+
 TEST(ParseModel, Sha256OfKnownVector) {
   // FIPS 180-2, appendix B.1.
   EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");

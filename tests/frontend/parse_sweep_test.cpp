@@ -98,6 +98,9 @@ TEST(ParseSweep, BadFilesAreRefusedWhereTheyAreWrong) {
   expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "collect:\n  - {name: a, column: x, stat: median}\n"),
                "6:32", "expected one of max, min, absmax, mean, rms, initial, final");
   expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "speed: 3\n"), "5:1", "speed");
+  // Two probes of one label would be two columns of one name.
+  expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "simulate: {probes: [deck@5, deck@2, deck@5]}\n"),
+               "5:37", "probes: 'deck@5' is given twice");
 }
 
 }  // namespace

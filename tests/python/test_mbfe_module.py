@@ -122,5 +122,48 @@ class SameAsTheCommandLine(unittest.TestCase):
             mbfe.load(model("double_pendulum.yaml")).simulate(probes=["deck@1"])
 
 
+class BadInputIsRefusedWithAMessage(unittest.TestCase):
+    """What the module took or said nothing about before: each as the command
+    line does it."""
+
+    def test_a_model_error_message_is_never_empty(self):
+        # A name that is not UTF-8 (bytes) or holds a NUL made the message empty.
+        with self.assertRaises(mbfe.ModelError) as caught:
+            mbfe.parse(b"model: m\n", b"bad\xffname")
+        self.assertEqual(str(caught.exception), "bad\ufffdname:1:8: model 'm' has no bodies and no beams")
+
+    def test_a_path_with_a_nul_is_refused(self):
+        # "ok.yaml\0junk" loaded ok.yaml.
+        with self.assertRaises(ValueError) as caught:
+            mbfe.load(model("double_pendulum.yaml") + "\0junk")
+        self.assertIn("NUL", str(caught.exception))
+        with self.assertRaises(ValueError):
+            mbfe.parse("model: m\n", "a\0b")
+
+    def test_every_follows_the_command_lines_rule(self):
+        # every=0 ran (automatic rows) where --every 0 is refused.
+        r = cli("simulate", model("double_pendulum.yaml"), "--every", "0")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        m = mbfe.load(model("double_pendulum.yaml"))
+        for every in (0, -3):
+            with self.assertRaises(ValueError) as caught:
+                m.simulate(t_end=0.01, every=every)
+            self.assertIn("every must be a positive integer", str(caught.exception))
+        self.assertEqual(len(m.simulate(t_end=0.01, every=5).t), 3)  # t = 0, 0.005, 0.01
+        self.assertEqual(len(m.simulate(t_end=0.01).t), 11)  # absent: every step up to 10,000 rows
+
+    def test_output_columns_have_names_of_their_own(self):
+        # A body named t gave two columns t and r.t returned the body's angle.
+        text = ("model: m\ngravity: [0, -9.81]\nbodies:\n"
+                "  - {name: t, parent: ground, joint: {type: revolute}, mass: 1, inertia: 0.1}\n")
+        with self.assertRaises(mbfe.ModelError) as caught:
+            mbfe.parse(text, "t.yaml")
+        self.assertTrue(str(caught.exception).startswith("t.yaml:4:12: body 't'"), str(caught.exception))
+        # Two probes of one label: two columns of one name.
+        with self.assertRaises(ValueError) as caught:
+            mbfe.load(model("bridge_moving_mass.yaml")).simulate(t_end=0.01, probes=["deck@10", "deck@10"])
+        self.assertIn("is given twice", str(caught.exception))
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -60,6 +60,18 @@ inline CliRun run_cli(const std::string& args, const std::string& env_prefix = "
   return run;
 }
 
+/// A shell prefix for a run that, broken, would read without end (a device
+/// such as /dev/zero): at most 60 s and, outside AddressSanitizer builds (which
+/// reserve terabytes of address space), 4 GB of it, so that a regression fails
+/// its test instead of exhausting the machine.
+inline std::string bounded_run_prefix() {
+#if defined(__SANITIZE_ADDRESS__)
+  return "timeout 60";
+#else
+  return "ulimit -v 4000000 && timeout 60";
+#endif
+}
+
 struct Csv {
   std::vector<std::string> header;
   std::vector<std::vector<double>> rows;

@@ -1,8 +1,12 @@
 // Faults at the command line, through the real `mbfe` binary: numerical
 // failures keep the output written so far (flushed, whole lines) and exit with
-// status 3; Ctrl-C stops cleanly; bad flags, a missing model file and an
-// unwritable --out exit with status 2 and say what is wrong.
+// status 3; Ctrl-C stops cleanly; bad flags, a missing model file, an
+// unwritable --out, an output that would overwrite the model, a --vtk folder
+// that is a file and too many frames exit with status 2 and say what is wrong;
+// a path that is not UTF-8 still gets its sidecar.
 #include <gtest/gtest.h>
+
+#include <sys/stat.h>
 
 #include <regex>
 #include <string>
@@ -21,6 +25,7 @@ long rows_in_message(const std::string& err) {
 
 class CliFaults : public ::testing::Test {
  protected:
+  static fs::path source_model() { return fs::path(MBFE_SOURCE_DIR) / "models" / "double_pendulum.yaml"; }
   std::string env() const { return "MBFE_CACHE_DIR=" + quote((tmp_ / "cache").string()); }
   RunResult mbfe(const std::string& args) { return run_mbfe(tmp_, args, env()); }
   TempDir tmp_;
@@ -119,6 +124,7 @@ TEST_F(CliFaults, BadFlagsExit2) {
       {"simulate models/double_pendulum.yaml --t-end 0", "--t-end must be > 0"},
       {"simulate models/double_pendulum.yaml --every 0", "--every"},
       {"simulate models/double_pendulum.yaml --integrator nonsense", "nonsense"},
+      {"simulate models/bridge_moving_mass.yaml --probe deck@10,deck@5,deck@10", "--probe: 'deck@10' is given twice"},
       {"simulate", "expected one model file"},
       {"simulate a.yaml b.yaml", "expected one model file"},
       {"eval models/double_pendulum.yaml --q 1,2,3", "--q"},
@@ -149,6 +155,125 @@ TEST_F(CliFaults, OutIntoAMissingFolderExits2AndWritesNothing) {
   EXPECT_NE(r.err.find(out.string() + ": cannot write the output: No such file or directory"), std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(out.parent_path()));
+}
+
+TEST_F(CliFaults, AnOutputNamingTheModelIsRefusedAndTheModelKept) {
+  // --out naming the model file overwrote it with the CSV.
+  const fs::path model = tmp_ / "run.yaml";
+  fs::copy_file(source_model(), model);
+  const std::string text = slurp(model);
+  // The model itself, a hard link to it, a symbolic link to it, and a CSV
+  // whose sidecar (FILE.json) would be the model.
+  fs::create_hard_link(model, tmp_ / "hard.csv");
+  fs::create_symlink(model, tmp_ / "soft.csv");
+  const fs::path sidecar_model = tmp_ / "out.csv.json";
+  fs::copy_file(source_model(), sidecar_model);
+  for (const fs::path& out : {model, tmp_ / "hard.csv", tmp_ / "soft.csv"}) {
+    const RunResult r = mbfe("simulate " + quote(model.string()) + " --t-end 0.01 --out " + quote(out.string()));
+    EXPECT_EQ(r.status, 2) << out << "\n" << r.err;
+    EXPECT_NE(r.err.find("--out " + out.string() + ": that is the input " + model.string()), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(slurp(model), text);
+  const RunResult r = mbfe("simulate " + quote(sidecar_model.string()) + " --t-end 0.01 --out " +
+                           quote((tmp_ / "out.csv").string()));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("its sidecar"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(sidecar_model), text);
+  EXPECT_FALSE(fs::exists(tmp_ / "out.csv"));
+  // generate -o: the sources may not land on the model either.
+  const fs::path gen = tmp_ / "gen";
+  fs::create_directories(gen);
+  fs::copy_file(source_model(), gen / "double_pendulum.cpp");
+  const RunResult g = mbfe("generate " + quote((gen / "double_pendulum.cpp").string()) + " -o " + quote(gen.string()));
+  EXPECT_EQ(g.status, 2) << g.err;
+  EXPECT_EQ(slurp(gen / "double_pendulum.cpp"), text);
+}
+
+TEST_F(CliFaults, OutputFoldersThatAreFilesAreBadInputFoundFirst) {
+  // --vtk onto an existing file: exit status 1 and a filesystem error.
+  const fs::path file = tmp_ / "not_a_folder";
+  spit(file, "x");
+  RunResult r = mbfe("simulate models/double_pendulum.yaml --t-end 0.01 --quiet --vtk " + quote(file.string()));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("--vtk " + file.string() + ": exists and is not a folder"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("error: "), std::string::npos) << r.err;
+  r = mbfe("generate models/double_pendulum.yaml -o " + quote(file.string()));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("-o " + file.string() + ": exists and is not a folder"), std::string::npos) << r.err;
+  // --out onto a folder, before the solver is compiled.
+  r = mbfe("simulate models/double_pendulum.yaml --t-end 0.01 --out " + quote(tmp_.path().string()));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("it is a folder"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("compiled"), std::string::npos) << r.err;
+}
+
+TEST_F(CliFaults, AnimationFramesAreCapped) {
+  // --vtk-frames 100000000 wrote a frame per row (100,001 files, 403 MB, on a
+  // long run); 1e300 was cast to int.
+  const fs::path dir = tmp_ / "anim";
+  for (const char* frames : {"100000000", "1e300", "10001"}) {
+    const RunResult r =
+        mbfe("simulate models/double_pendulum.yaml --t-end 0.01 --quiet --vtk " + quote(dir.string()) + " --vtk-frames " + frames);
+    EXPECT_EQ(r.status, 2) << frames << "\n" << r.err;
+    EXPECT_NE(r.err.find("--vtk-frames: at most 10000 frames"), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir));
+  const RunResult ok =
+      mbfe("simulate models/double_pendulum.yaml --t-end 0.01 --quiet --vtk " + quote(dir.string()) + " --vtk-frames 10000");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+}
+
+TEST_F(CliFaults, AModelPathThatIsNotUtf8StillGetsItsSidecar) {
+  // The sidecar names the model file; a byte 0xFF in its name made the JSON
+  // writer throw after the run: exit status 1 and an empty sidecar.
+  const fs::path model = tmp_ / "model_\xFF.yaml";
+  fs::copy_file(source_model(), model);
+  const fs::path csv = tmp_ / "out.csv";
+  const RunResult r = mbfe("simulate " + quote(model.string()) + " --t-end 0.01 --quiet --out " + quote(csv.string()));
+  EXPECT_EQ(r.status, 0) << r.err;
+  const std::string sidecar = slurp(csv.string() + ".json");
+  // The byte is written as U+FFFD (EF BF BD), the rest as it was.
+  EXPECT_NE(sidecar.find("model_\xEF\xBF\xBD.yaml"), std::string::npos) << sidecar;
+  EXPECT_NE(sidecar.find("\"status\": \"completed\""), std::string::npos) << sidecar;
+}
+
+TEST_F(CliFaults, StepCountsBeyondTheLimitAreRefusedAndALongStepIsShortenedToTheRun) {
+  // 1e19 steps overflowed the count: "0 rk4 steps ... completed", exit 0.
+  RunResult r = mbfe("simulate models/double_pendulum.yaml --step 1e-10 --t-end 1e9 --quiet --out " +
+                     quote((tmp_ / "never.csv").string()));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("the run needs 1e+19 steps"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("more than the limit of 9007199254740992 (2^53)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(tmp_ / "never.csv"));
+  // A step of 1e300 s over a 1 s run took no step and said completed: now
+  // one step of 1 s, its row at t = 1.
+  const fs::path csv = tmp_ / "one.csv";
+  r = mbfe("simulate models/double_pendulum.yaml --step 1e300 --t-end 1 --out " + quote(csv.string()));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("1 rk4 steps of 1 s to t = 1 s"), std::string::npos) << r.err;
+  const Csv rows = read_csv(csv.string());
+  ASSERT_EQ(rows.rows.size(), 2u);
+  EXPECT_EQ(rows.rows.back()[0], 1.0);
+}
+
+TEST_F(CliFaults, BadInputFoundAfterTheOutputOpenedRemovesOnlyARegularFile) {
+  // Bad input found once the output is open (here the step count, refused by
+  // the driver after the header) removes the empty output: it removed
+  // whatever --out named, a device or a pipe too (as root, --out /dev/null
+  // took /dev/null off the machine). A pipe with a reader stands in for it.
+  const fs::path pipe = tmp_ / "pipe";
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  const std::string reader = "{ cat " + quote(pipe.string()) + " >/dev/null & } && " + env();
+  const RunResult r = run_mbfe(tmp_, "simulate models/double_pendulum.yaml --step 1e-10 --t-end 1e9 --quiet --out " +
+                                         quote(pipe.string()), reader);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(fs::is_fifo(pipe)) << "the pipe was removed";
+  // A regular file is still removed.
+  const fs::path csv = tmp_ / "empty.csv";
+  const RunResult f = mbfe("simulate models/double_pendulum.yaml --step 1e-10 --t-end 1e9 --quiet --out " +
+                           quote(csv.string()));
+  EXPECT_EQ(f.status, 2) << f.err;
+  EXPECT_FALSE(fs::exists(csv));
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
 // `mbfe plot`: the unit of each column (from the sidecar JSON, else from its
 // name), panels by unit, and the command through the real binary: against a
-// chosen column, two panels, an unknown column refused.
+// chosen column, two panels, an unknown column refused; bad paths refused
+// with exit status 2 (as simulate) before gnuplot starts, the CSV kept.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "tests/support/cli.h"
@@ -59,6 +61,42 @@ TEST(PlotCommand, AgainstAColumnInPanelsAndUnknownColumnsRefused) {
   const test::CliRun bad = test::run_cli("plot " + test::shell_quote(csv) + " -o " + test::shell_quote(png) + " --x speed");
   EXPECT_EQ(bad.status, 2) << bad.all();
   EXPECT_NE(bad.err.find("--x: no column 'speed' in "), std::string::npos) << bad.err;
+}
+
+TEST(PlotCommand, BadPathsAreBadInputAndTheCsvIsKept) {
+  test::TempDir dir;
+  const std::string csv = (dir / "run.csv").string();
+  const test::CliRun sim =
+      test::run_cli("simulate models/double_pendulum.yaml --t-end 0.2 --quiet --out " + test::shell_quote(csv));
+  ASSERT_EQ(sim.status, 0) << sim.all();
+  const std::string before = test::slurp(csv);
+  // -o into a folder that does not exist: exit status 1 from gnuplot before,
+  // where simulate --out says 2 with the same words.
+  test::CliRun r = test::run_cli("plot " + test::shell_quote(csv) + " -o " +
+                                 test::shell_quote((dir / "missing" / "x.png").string()));
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find("x.png: cannot write the output: No such file or directory"), std::string::npos) << r.err;
+  // -o onto a folder.
+  r = test::run_cli("plot " + test::shell_quote(csv) + " -o " + test::shell_quote(dir.path().string()));
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find("it is a folder"), std::string::npos) << r.err;
+  // -o onto the CSV it draws, under another name (a hard link): refused, the
+  // CSV untouched.
+  const std::string alias = (dir / "alias.png").string();
+  std::filesystem::create_hard_link(csv, alias);
+  r = test::run_cli("plot " + test::shell_quote(csv) + " -o " + test::shell_quote(alias));
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find("that is the input " + csv), std::string::npos) << r.err;
+  EXPECT_TRUE(test::slurp(csv) == before) << "the CSV was overwritten";
+  // A .npy is not drawn as if it were text.
+  r = test::run_cli("plot " + test::shell_quote((dir / "run.npy").string()) + " -o " +
+                    test::shell_quote((dir / "x.png").string()));
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find("mbfe plot draws a CSV"), std::string::npos) << r.err;
+  // /dev/zero was read until memory ran out.
+  r = test::run_cli("plot /dev/zero -o " + test::shell_quote((dir / "x.png").string()), test::bounded_run_prefix());
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find("/dev/zero: cannot read the results file: not a regular file"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 // `mbfe stats` end to end: the golden signal of tests/runtime/signal (SciPy's
 // filtfilt of a 4th-order Butterworth, its header says how it was made)
-// written as a results CSV, its statistics against sums over SciPy's output,
-// and the located errors of bad input.
+// written as a results CSV, its statistics against sums over SciPy's output;
+// the filter where one polynomial of order 2 N failed, against closed forms;
+// a .npy of mbfe simulate against the CSV of the same run; and the located
+// errors of bad input (NaN, times that do not increase, a device).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +15,7 @@
 
 #include "tests/support/cli.h"
 #include "tests/support/filter_golden.h"
+#include "tests/support/process.h"
 
 namespace mbfe {
 namespace {
@@ -91,6 +94,129 @@ TEST(CmdStats, BadInputIsLocated) {
   r = run_cli("stats '" + uneven + "' --column force --lowpass 20");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("not evenly spaced"), std::string::npos) << r.err;
+}
+
+/// A results CSV t, force of n samples at `sample_hz`, force(t).
+template <class F>
+std::string write_signal(const std::string& name, std::size_t n, double sample_hz, F force) {
+  const std::string csv = tmp(name);
+  std::ofstream out(csv);
+  out.precision(17);
+  out << "t,force\n";
+  for (std::size_t i = 0; i < n; ++i) out << i / sample_hz << "," << force(i / sample_hz) << "\n";
+  return csv;
+}
+
+// The cases where the filter, built as one polynomial of order 2 N, printed
+// garbage with exit status 0: order 8 at 20 Hz of 10 kHz (a max of 9.3e211),
+// order 6 at 5 Hz (1.9e28), order 5 at 20 Hz of 40 kHz (0.17 % off). Oracle:
+// a slow sine passes zero-phase with gain 1 / (1 + (f / fc)^(2 order)), here
+// 1 to ~1e-12; the window keeps 2 s away from the ends' start-up.
+TEST(CmdStats, LowpassOfASlowSineSampledFastKeepsItsMaxAndMean) {
+  struct Case {
+    int order;
+    double cutoff_hz, sample_hz;
+  };
+  constexpr double kSineHz = 0.5;
+  constexpr double kAmplitudeTol = 1e-6;  // of the 10 N amplitude: start-up left, warping, rounding
+  for (const Case& c : {Case{8, 20.0, 10000.0}, Case{6, 5.0, 10000.0}, Case{5, 20.0, 40000.0}}) {
+    const std::size_t n = static_cast<std::size_t>(6.0 * c.sample_hz);
+    const std::string csv = write_signal("stats_sine.csv", n, c.sample_hz,
+                                         [&](double t) { return 100.0 + 10.0 * std::sin(2.0 * M_PI * kSineHz * t); });
+    const CliRun r = run_cli("stats '" + csv + "' --column force --lowpass " + std::to_string(c.cutoff_hz) +
+                             " --order " + std::to_string(c.order) + " --from 2 --to 4 --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    // [2, 4] s holds one whole period (2 s): the sine's max, min and zero mean.
+    EXPECT_NEAR(j.at("max").get<double>(), 110.0, kAmplitudeTol * 10.0) << "order " << c.order;
+    EXPECT_NEAR(j.at("min").get<double>(), 90.0, kAmplitudeTol * 10.0) << "order " << c.order;
+    EXPECT_NEAR(j.at("mean").get<double>(), 100.0, kAmplitudeTol * 10.0) << "order " << c.order;
+  }
+}
+
+TEST(CmdStats, AConstantFilteredAtAHundredthOfAHertzKeepsItsMean) {
+  // 5 N at 1 kHz for 3 s, 0.01 Hz: the mean came out 0.0039.
+  constexpr double kConstantTol = 1e-6;  // relative; see butterworth_test.cpp
+  const std::string csv = write_signal("stats_constant.csv", 3000, 1000.0, [](double) { return 5.0; });
+  const CliRun r = run_cli("stats '" + csv + "' --column force --lowpass 0.01 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NEAR(nlohmann::json::parse(r.out).at("mean").get<double>(), 5.0, kConstantTol * 5.0);
+  // Below 1e-5 of the sample rate: refused, naming the range.
+  const CliRun low = run_cli("stats '" + csv + "' --column force --lowpass 0.001");
+  EXPECT_EQ(low.status, 2) << low.all();
+  EXPECT_NE(low.err.find("at least 1e-05 of the sample rate"), std::string::npos) << low.err;
+}
+
+TEST(CmdStats, TheLargestDoublesKeepTheirMean) {
+  // A constant 1e308: the sum overflowed and --json printed "mean": null.
+  const std::string csv = write_signal("stats_huge.csv", 1000, 1000.0, [](double) { return 1e308; });
+  const CliRun r = run_cli("stats '" + csv + "' --column force --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.at("mean").is_number()) << r.out;
+  EXPECT_EQ(j.at("mean").get<double>(), 1e308);
+  EXPECT_EQ(j.at("std").get<double>(), 0.0);
+}
+
+TEST(CmdStats, NanInfinityAndTimesThatDoNotIncreaseAreRefusedAtTheirLine) {
+  // Before: max and min skipped a NaN, mean and std came out null, exit 0.
+  const std::string nan = write_signal("stats_nan.csv", 100, 1000.0, [](double t) {
+    return t > 0.0405 && t < 0.0415 ? std::nan("") : 10.0;
+  });  // the row t = 0.041, line 43
+  CliRun r = run_cli("stats '" + nan + "' --column force");
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find(nan + ":43: column 'force' is nan"), std::string::npos) << r.err;
+  const std::string inf = tmp("stats_inf.csv");
+  std::ofstream(inf) << "t,force\n0,1\n0.001,inf\n0.002,1\n";
+  r = run_cli("stats '" + inf + "' --column force --json");
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find(inf + ":3: column 'force' is inf"), std::string::npos) << r.err;
+  // Equal and backwards times: nulls or garbage before.
+  const std::string equal = tmp("stats_equal_t.csv");
+  std::ofstream(equal) << "t,force\n0,1\n0.001,2\n0.001,3\n0.002,4\n";
+  r = run_cli("stats '" + equal + "' --column force --json");
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find(equal + ":4: t = 0.001 s is not after the row before"), std::string::npos) << r.err;
+  const std::string back = tmp("stats_back_t.csv");
+  std::ofstream(back) << "t,force\n0,1\n0.002,2\n0.001,3\n0.003,4\n";
+  r = run_cli("stats '" + back + "' --column force --lowpass 20 --json");
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find(back + ":4: t = 0.001 s is not after the row before"), std::string::npos) << r.err;
+}
+
+TEST(CmdStats, ANpyOfSimulateGivesTheStatisticsOfItsCsv) {
+  // simulate writes .npy (names in FILE.npy.json); stats read it as CSV and
+  // said "no column 't' (it has 5 columns: \x93NUMPY...".
+  test::TempDir dir;
+  const std::string npy = (dir / "run.npy").string(), csv = (dir / "run.csv").string();
+  for (const std::string& out : {npy, csv}) {
+    const CliRun sim = run_cli("simulate models/double_pendulum.yaml --t-end 0.5 --every 1 --quiet --out " +
+                               test::shell_quote(out));
+    ASSERT_EQ(sim.status, 0) << sim.all();
+  }
+  const CliRun from_npy = run_cli("stats " + test::shell_quote(npy) + " --column link2 --lowpass 20 --json");
+  const CliRun from_csv = run_cli("stats " + test::shell_quote(csv) + " --column link2 --lowpass 20 --json");
+  ASSERT_EQ(from_npy.status, 0) << from_npy.err;
+  ASSERT_EQ(from_csv.status, 0) << from_csv.err;
+  // The CSV holds the shortest text that reads back as the same double: the
+  // same numbers, the same statistics to the last bit.
+  EXPECT_EQ(nlohmann::json::parse(from_npy.out), nlohmann::json::parse(from_csv.out));
+  // Without its sidecar the names are unknown: said so.
+  std::filesystem::remove(npy + ".json");
+  const CliRun bare = run_cli("stats " + test::shell_quote(npy) + " --column link2");
+  EXPECT_EQ(bare.status, 2) << bare.all();
+  EXPECT_NE(bare.err.find(npy + ".json"), std::string::npos) << bare.err;
+}
+
+TEST(CmdStats, ADeviceOrAFolderIsRefusedBeforeReading) {
+  // /dev/zero was read until memory ran out.
+  const CliRun zero = run_cli("stats /dev/zero --column force", test::bounded_run_prefix());
+  EXPECT_EQ(zero.status, 2) << zero.all();
+  EXPECT_NE(zero.err.find("/dev/zero: cannot read the results file: not a regular file"), std::string::npos)
+      << zero.err;
+  const CliRun folder = run_cli("stats models --column force");
+  EXPECT_EQ(folder.status, 2) << folder.all();
+  EXPECT_NE(folder.err.find("models: cannot read the results file: it is a folder"), std::string::npos) << folder.err;
 }
 
 }  // namespace

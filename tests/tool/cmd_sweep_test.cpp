@@ -1,8 +1,12 @@
 // `mbfe sweep` through the real binary: a six-point speed sweep run locally on
 // two jobs (each point's statistics against its own run.csv and against
 // `mbfe simulate` of its model file), resumed, a failing point recorded while
-// the others go on, a bad sweep file refused, and the Slurm scripts of a dry run.
+// the others go on, a bad sweep file refused, and the Slurm scripts of a dry run;
+// a resume after the simulate: or collect: block changed runs the points again,
+// a message with non-ASCII text stays a result, devices and arguments a Slurm
+// script cannot carry are refused.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -115,6 +119,135 @@ TEST(Sweep, SlurmDryRunWritesTheArrayAndTheCollectJob) {
   EXPECT_NE(r.out.find("sbatch --dependency=afterany:"), std::string::npos) << r.out;
   // The solvers were compiled into DIR/cache for the nodes.
   EXPECT_TRUE(fs::exists(out + "/cache"));
+}
+
+/// A two-point sweep of the double pendulum whose simulate: and collect:
+/// blocks are given; the final t of each run is collected as `t_last`.
+void write_pendulum_sweep(const fs::path& file, const std::string& simulate, const std::string& stat = "final") {
+  spit(file, "sweep: pendulum\nmodel: " + source("models/double_pendulum.yaml") +
+                 "\nvary:\n  - {path: bodies.link1.mass, values: [1.0, 2.0]}\n"
+                 "simulate: " + simulate + "\n"
+                 "collect:\n  - {name: t_last, column: t, stat: " + stat + "}\n");
+}
+
+TEST(Sweep, AResumeAfterTheSimulateOrCollectBlockChangedRunsThePointsAgain) {
+  TempDir dir;
+  const fs::path sweep = dir / "pendulum.yaml";
+  const std::string out = (dir / "out").string();
+  const std::string command = "sweep " + shell_quote(sweep.string()) + " --out " + shell_quote(out) + " --jobs 2";
+  write_pendulum_sweep(sweep, "{t_end: 0.05}");
+  CliRun r = run_cli(command);
+  ASSERT_EQ(r.status, 0) << r.all();
+  EXPECT_NE(slurp(out + "/summary.csv").find("\n0,1.0,done,0,0.050000000000000003,"), std::string::npos) << slurp(out + "/summary.csv");
+  // t_end changed: the old points (t_last 0.05) were kept and summarised as
+  // done, without a word.
+  write_pendulum_sweep(sweep, "{t_end: 0.1}");
+  r = run_cli(command);
+  ASSERT_EQ(r.status, 0) << r.all();
+  EXPECT_NE(r.err.find("2 points hold results of another request"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("2 points, 0 already done, 2 to run"), std::string::npos) << r.err;
+  std::string summary = slurp(out + "/summary.csv");
+  EXPECT_NE(summary.find("\n0,1.0,done,0,0.10000000000000001,"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\n1,2.0,done,0,0.10000000000000001,"), std::string::npos) << summary;
+  // The same request again: nothing runs.
+  r = run_cli(command);
+  EXPECT_NE(r.err.find("2 points, 2 already done, 0 to run"), std::string::npos) << r.err;
+  // The collect entry's statistic changed (final to initial): the stored
+  // number is of the other statistic.
+  write_pendulum_sweep(sweep, "{t_end: 0.1}", "initial");
+  const CliRun collect = run_cli("sweep " + shell_quote(sweep.string()) + " --out " + shell_quote(out) + " --collect");
+  EXPECT_EQ(collect.status, 3) << collect.all();
+  EXPECT_NE(collect.err.find("0 done, 0 failed, 2 missing (2 with a result of another request)"), std::string::npos)
+      << collect.err;
+  EXPECT_NE(slurp(out + "/summary.csv").find("its result is of another request"), std::string::npos);
+  r = run_cli(command);
+  ASSERT_EQ(r.status, 0) << r.all();
+  summary = slurp(out + "/summary.csv");
+  EXPECT_NE(summary.find("\n0,1.0,done,0,0,"), std::string::npos) << summary;
+}
+
+TEST(Sweep, AMessageCutInTheMiddleOfLongNonAsciiTextIsStillARecordedFailure) {
+  // A value of 30 euro signs (3 bytes each) where a number goes: the message
+  // quotes 40 bytes of it. Cut in the middle of a character, it made the
+  // point's result.json throw (nlohmann type_error.316): no result, the point
+  // "missing" for ever.
+  TempDir dir;
+  const fs::path sweep = dir / "euro.yaml";
+  std::string euros;
+  for (int i = 0; i < 30; ++i) euros += "\xE2\x82\xAC";
+  spit(sweep, "sweep: euro\nmodel: " + source("models/double_pendulum.yaml") +
+                  "\nvary:\n  - {path: bodies.link1.mass, values: [1.0, \"" + euros + "\"]}\n"
+                  "simulate: {t_end: 0.01}\n");
+  const std::string out = (dir / "out").string();
+  const CliRun r = run_cli("sweep " + shell_quote(sweep.string()) + " --out " + shell_quote(out) + " --jobs 1");
+  EXPECT_EQ(r.status, 3) << r.all();
+  EXPECT_NE(r.err.find("1 done, 1 failed"), std::string::npos) << r.err;
+  const std::string result = slurp(out + "/points/1/result.json");
+  EXPECT_NE(result.find("\"exit_status\": 2"), std::string::npos) << result;
+  EXPECT_NE(result.find("mass"), std::string::npos) << result;
+  EXPECT_NE(slurp(out + "/summary.json").find("\"failed\": 1"), std::string::npos);
+}
+
+TEST(Sweep, ADeviceAsTheModelTheSweepFileOrAResultIsNeverRead) {
+  // `model: /dev/zero` was read until memory ran out.
+  TempDir dir;
+  const fs::path sweep = dir / "zero.yaml";
+  spit(sweep, "sweep: zero\nmodel: /dev/zero\nvary:\n  - {path: bodies.a.mass, values: [1.0]}\n");
+  const std::string out = (dir / "out").string();
+  CliRun r = run_cli("sweep " + shell_quote(sweep.string()) + " --out " + shell_quote(out), bounded_run_prefix());
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find("zero.yaml:2:8: model file '/dev/zero': cannot read: not a regular file"), std::string::npos)
+      << r.err;
+  r = run_cli("sweep /dev/zero --out " + shell_quote(out), bounded_run_prefix());
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find("/dev/zero: cannot read: not a regular file"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  // A point's result.json replaced by a pipe that nobody writes (as a device,
+  // it was read without end; a pipe blocked for ever): the point counts as
+  // not run, and the summary is written.
+  const fs::path pendulum = dir / "pendulum.yaml";
+  write_pendulum_sweep(pendulum, "{t_end: 0.01}");
+  r = run_cli("sweep " + shell_quote(pendulum.string()) + " --out " + shell_quote(out) + " --jobs 1 --quiet");
+  ASSERT_EQ(r.status, 0) << r.all();
+  fs::remove(out + "/points/0/result.json");
+  ASSERT_EQ(::mkfifo((out + "/points/0/result.json").c_str(), 0600), 0);
+  r = run_cli("sweep " + shell_quote(pendulum.string()) + " --out " + shell_quote(out) + " --collect",
+              bounded_run_prefix());
+  EXPECT_EQ(r.status, 3) << r.all();
+  EXPECT_NE(r.err.find("1 done, 0 failed, 1 missing"), std::string::npos) << r.err;
+}
+
+TEST(Sweep, SlurmScriptsQuoteEveryPathAndRefuseControlCharacters) {
+  TempDir dir;
+  // One solver for both points (the initial angle is no constant of the
+  // generated code): --slurm compiles it into DIR/cache first.
+  const fs::path sweep = dir / "angles.yaml";
+  spit(sweep, "sweep: angles\nmodel: " + source("models/double_pendulum.yaml") +
+                  "\nvary:\n  - {path: initial.q.link1, values: [0.1, 0.2]}\nsimulate: {t_end: 0.01}\n");
+  // A newline in --out wrote a line of its own into points.sbatch.
+  const std::string injected = (dir / "out\n#SBATCH --wrap=evil").string();
+  CliRun r = run_cli("sweep " + shell_quote(sweep.string()) + " --out " +
+                     shell_quote(injected) + " --slurm --dry-run --quiet");
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find("holds the control character \\x0A"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(injected));
+  r = run_cli("sweep " + shell_quote(sweep.string()) + " --out " +
+              shell_quote((dir / "o").string()) + " --slurm --dry-run --quiet --partition " + shell_quote("a\nb"));
+  EXPECT_EQ(r.status, 2) << r.all();
+  // A space broke --output=; a % would be taken for one of Slurm's patterns.
+  const std::string out = (dir / "runs of 50% \"load\"").string();
+  r = run_cli("sweep " + shell_quote(sweep.string()) + " --out " + shell_quote(out) +
+              " --slurm --dry-run --quiet");
+  ASSERT_EQ(r.status, 0) << r.all();
+  const std::string points = slurp(out + "/slurm/points.sbatch");
+  // sbatch reads an #SBATCH value in double quotes with \ escaping; %% is a
+  // literal %, %a the task.
+  const std::string folder = (dir / "runs of 50%% \\\"load\\\"").string();
+  EXPECT_NE(points.find("#SBATCH --output=\"" + folder + "/slurm/point-%a.out\"\n"), std::string::npos) << points;
+  EXPECT_NE(points.find("--out " + shell_quote(out) + " --point"), std::string::npos) << points;
+  EXPECT_NE(points.find("export MBFE_CACHE_DIR=" + shell_quote(out + "/cache") + "\n"), std::string::npos) << points;
+  EXPECT_NE(slurp(out + "/slurm/collect.sbatch").find("#SBATCH --output=\"" + folder + "/slurm/collect.out\"\n"),
+            std::string::npos);
 }
 
 }  // namespace

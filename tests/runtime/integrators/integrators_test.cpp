@@ -225,6 +225,51 @@ TEST(Driver, SigintStopsCleanly) {
   EXPECT_EQ(r.rows, 50);
 }
 
+TEST(Driver, AStepLongerThanTheRunIsShortenedToTheRun) {
+  // --step 1e300 --t-end 1 took no step and said completed. Now one step of
+  // the whole run; oracle: RK4 on y' = -y is y1 = R(-h) y0 with
+  // R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24, here R(-1) = 3/8.
+  Scalar sys({-1.0, 0.0});
+  SimulationOptions opt;
+  opt.step = 1e300;
+  opt.t_end = 1.0;
+  opt.quiet = true;
+  opt.handle_sigint = false;
+  for (const char* name : {"rk4", "ab2"}) {  // one-step and multistep alike
+    std::vector<double> ts, ys;
+    const auto r = run_simulation(sys, parse_integrator(name), Eigen::Vector2d(1, 0), opt,
+                                  [&](double t, const Eigen::VectorXd& y) {
+                                    ts.push_back(t);
+                                    ys.push_back(y[0]);
+                                  });
+    EXPECT_EQ(r.status, SimulationStatus::kCompleted) << name;
+    EXPECT_EQ(r.steps, 1) << name;
+    EXPECT_EQ(r.step, 1.0) << name;
+    ASSERT_EQ(ts.size(), 2u) << name;
+    EXPECT_EQ(ts.back(), 1.0) << name;
+    if (std::string(name) == "rk4") EXPECT_DOUBLE_EQ(ys.back(), 0.375);
+  }
+}
+
+TEST(Driver, AStepCountBeyondTwoToThe53IsRefused) {
+  // --step 1e-10 --t-end 1e9: 1e19 steps overflowed the int64 count, which
+  // came out negative: 0 steps, "completed".
+  Scalar sys({-1.0, 0.0});
+  SimulationOptions opt;
+  opt.step = 1e-10;
+  opt.t_end = 1e9;
+  opt.quiet = true;
+  opt.handle_sigint = false;
+  try {
+    run_simulation(sys, parse_integrator("rk4"), Eigen::Vector2d(1, 0), opt, [](double, const auto&) {});
+    ADD_FAILURE() << "1e19 steps were taken on";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("needs 1e+19 steps"), std::string::npos) << what;
+    EXPECT_NE(what.find("more than the limit of 9007199254740992 (2^53)"), std::string::npos) << what;
+  }
+}
+
 TEST(Parse, NamesAndErrors) {
   EXPECT_EQ(parse_integrator("forward_euler").kind, IntegratorKind::kForwardEuler);
   EXPECT_TRUE(parse_integrator("bdf2").implicit());
