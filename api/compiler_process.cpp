@@ -72,6 +72,10 @@ int end_group(pid_t leader) {
   return raw;
 }
 
+const char* signal_name(int signal) {
+  return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : signal == SIGHUP ? "SIGHUP" : "a signal";
+}
+
 int decode_status(int raw) {
   if (WIFEXITED(raw)) return WEXITSTATUS(raw);
   if (WIFSIGNALED(raw)) return 128 + WTERMSIG(raw);
@@ -123,7 +127,7 @@ void DeferredSignals::finish() {
   const int to_raise = release();
   if (to_raise) ::raise(to_raise);  // its usual effect: by default the process ends here
   if (to_raise || recorded)
-    throw CompileInterrupted(std::string("interrupted by ") + ::strsignal(to_raise ? to_raise : recorded) +
+    throw CompileInterrupted(std::string("interrupted by ") + signal_name(to_raise ? to_raise : recorded) +
                              " while compiling a solver");
 }
 
