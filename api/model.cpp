@@ -37,6 +37,13 @@ Model Model::make(ir::Model model, const mbfe_model_v1* solver, std::string libr
                                   std::to_string(solver->num_coordinates) +
                                   " coordinates) is not the solver of model '" + model.name + "' (" +
                                   std::to_string(model.bodies.size()) + " bodies)");
+    // A model read from a file is paired only with the solver generated from
+    // those bytes (an IR built in memory has no file to compare).
+    const std::string solver_sha256 = solver->model_sha256 ? solver->model_sha256 : "";
+    if (!model.source_sha256.empty() && model.source_sha256 != solver_sha256)
+      throw runtime::InvalidInput("the solver of '" + model.name +
+                                  "' was generated from another version of the model (sha256 " + solver_sha256 +
+                                  ", the model's is " + model.source_sha256 + "); rebuild it");
     shared->solver = solver;
   }
   shared->ir = std::move(model);

@@ -1,17 +1,25 @@
 #include "api/solver_cache.h"
 
 #include <dlfcn.h>
-#include <sys/wait.h>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cerrno>
 #include <chrono>
-#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <map>
+#include <mutex>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
+#include "api/compiler_process.h"
 #include "api/file_util.h"
 #include "frontend/sha256.h"
 #include "generator/emit/generate_solver.h"
@@ -25,44 +33,203 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kLibraryName = "solver.so";
-constexpr std::size_t kMaxCompilerMessage = 8000;  // characters of compiler output shown
+constexpr const char* kManifestName = "manifest";
+constexpr const char* kManifestHeader = "mbfe solver cache entry 2";
+constexpr std::size_t kMaxCompilerMessage = 8000;        // characters of compiler output shown
+constexpr std::size_t kMaxManifestBytes = 64 * 1024;      // a manifest is a few hundred bytes
+constexpr std::size_t kMaxLibraryBytes = std::size_t(1) << 32;  // 4 GiB: far above any solver
 
-std::string shell_quote(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
+// What an entry must have been built for: the manifest's fields.
+struct Identity {
+  std::string key;  // full SHA-256 of the key material
+  std::string model;
+  std::string model_sha256;
+  int coordinates = 0;
+  std::string generator;
+};
+
+std::string manifest_text(const Identity& id, const std::string& library_sha256) {
+  std::ostringstream m;
+  m << kManifestHeader << "\n"
+    << "key " << id.key << "\n"
+    << "model " << id.model << "\n"
+    << "model-sha256 " << id.model_sha256 << "\n"
+    << "coordinates " << id.coordinates << "\n"
+    << "generator " << id.generator << "\n"
+    << "library-sha256 " << library_sha256 << "\n";
+  return m.str();
 }
 
-// Runs `command` with stdout and stderr captured; returns the exit status.
-int run_captured(const std::string& command, std::string& output) {
-  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) throw std::runtime_error("cannot start the compiler: " + command);
-  char buffer[4096];
-  std::size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
-  const int status = ::pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
-}
-
-bool entry_is_intact(const fs::path& entry) {
-  std::error_code ec;
-  if (!fs::is_regular_file(entry / kLibraryName, ec)) return false;
-  try {
-    const std::string expected = read_file((entry / (std::string(kLibraryName) + ".sha256")).string());
-    return expected == frontend::sha256_hex(read_file((entry / kLibraryName).string()));
-  } catch (const std::exception&) {
-    return false;
+// Why a manifest does not describe the expected solver, or "" when it does;
+// `library_sha256` gets the recorded hash.
+std::string manifest_mismatch(const std::string& text, const Identity& want, std::string& library_sha256) {
+  std::istringstream in(text);
+  std::string line;
+  if (!std::getline(in, line) || line != kManifestHeader) return "its manifest is not one this mbfe writes";
+  std::map<std::string, std::string> fields;
+  while (std::getline(in, line)) {
+    const auto space = line.find(' ');
+    if (space == std::string::npos) return "its manifest is malformed";
+    fields[line.substr(0, space)] = line.substr(space + 1);
   }
+  library_sha256 = fields["library-sha256"];
+  if (fields["model"] != want.model)
+    return "built for another model: '" + fields["model"] + "', not '" + want.model + "'";
+  if (fields["model-sha256"] != want.model_sha256)
+    return "built from another version of the model: model sha256 " + fields["model-sha256"] + ", this file's is " +
+           want.model_sha256;
+  if (fields["coordinates"] != std::to_string(want.coordinates))
+    return "built for another version of the model: " + fields["coordinates"] + " coordinates, this one has " +
+           std::to_string(want.coordinates);
+  if (fields["generator"] != want.generator || fields["key"] != want.key)
+    return "built by another generator, compiler or flags (generator " + fields["generator"] + ")";
+  if (library_sha256.size() != 64) return "its manifest records no library hash";
+  return "";
 }
 
-// Moves a bad entry out of the way atomically, then deletes it. If the rename
-// fails, another process has moved it already (and may have put a fresh entry
-// in its place by the time we would delete): leave the path alone.
-void discard_entry(const fs::path& entry) {
-  const fs::path trash = entry.string() + ".discard." + std::to_string(::getpid());
+// The outcome of looking at an entry: loaded, absent, or unusable (why).
+struct Look {
+  const mbfe_model_v1* model = nullptr;
+  bool present = false;
+  std::string problem;
+};
+
+// dlopen of the very file `fd` is open on: the bytes just hashed, whatever
+// the path names by now. The loader remembers a library by the name it was
+// opened under, /proc/self/fd/N, and adds every further name of the same file
+// to it; so each file is opened once per process (found again by its device
+// and inode, which cannot be reused while it is mapped), and its descriptor
+// stays open for ever, so that N never names another file.
+void* open_library_fd(UniqueFd fd, const struct stat& st, std::string& problem) {
+  static std::mutex mutex;
+  static std::map<std::pair<dev_t, ino_t>, void*> loaded;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (const auto it = loaded.find({st.st_dev, st.st_ino}); it != loaded.end()) return it->second;
+  const std::string name = "/proc/self/fd/" + std::to_string(fd.get());
+  void* handle = ::dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    problem = std::string("cannot load solver: ") + ::dlerror();
+    return nullptr;
+  }
+  fd.release();
+  loaded[{st.st_dev, st.st_ino}] = handle;
+  return handle;
+}
+
+// Whether the loaded solver says it is the one the manifest promised.
+std::string solver_mismatch(const mbfe_model_v1* solver, const Identity& want) {
+  if (!solver) return "its mbfe_model_entry returned null";
+  if (solver->abi_version != MBFE_MODEL_ABI_VERSION)
+    return "solver ABI version " + std::to_string(solver->abi_version) + ", expected " +
+           std::to_string(MBFE_MODEL_ABI_VERSION);
+  const auto text = [](const char* s) { return std::string(s ? s : ""); };
+  if (want.model != text(solver->model_name) || want.model_sha256 != text(solver->model_sha256) ||
+      want.coordinates != solver->num_coordinates || want.generator != text(solver->generator_version))
+    return "the library holds the solver of '" + text(solver->model_name) + "' (sha256 " +
+           text(solver->model_sha256) + ", " + std::to_string(solver->num_coordinates) + " coordinates, generator " +
+           text(solver->generator_version) + "), not of this version of the model";
+  return "";
+}
+
+// Checks an entry and loads its library when every check passes. Throws
+// CacheRefused when something in it belongs to someone else or others may
+// write it; any other fault is a problem (the entry is rebuilt).
+Look look_at_entry(int cache, const std::string& entry_name, const fs::path& entry, const Identity& want) {
+  Look look;
+  struct stat st {};
+  if (::fstatat(cache, entry_name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0) {
+    if (errno != ENOENT) {
+      look.present = true;
+      look.problem = std::string("cannot examine it: ") + std::strerror(errno);
+    }
+    return look;
+  }
+  look.present = true;
+  require_private(st, entry.string(), "solver cache entry");
+  if (S_ISLNK(st.st_mode)) {
+    look.problem = "it is a symbolic link, never followed in the cache";
+    return look;
+  }
+  if (!S_ISDIR(st.st_mode)) {
+    look.problem = "it is not a folder";
+    return look;
+  }
+  const UniqueFd folder(open_beneath(cache, entry_name, O_RDONLY | O_DIRECTORY));
+  if (!folder || ::fstat(folder.get(), &st) != 0) {
+    look.problem = std::string("cannot open it: ") + std::strerror(errno);
+    return look;
+  }
+  require_private(st, entry.string(), "solver cache entry");
+
+  // Opens a file of the entry: regular, the user's, written by nobody else.
+  const auto open_file = [&](const char* name, UniqueFd& fd) -> bool {
+    fd = UniqueFd(open_beneath(folder.get(), name, O_RDONLY));
+    const std::string path = (entry / name).string();
+    if (!fd) {
+      look.problem = errno == ENOENT ? std::string("no ") + name
+                     : errno == ELOOP ? std::string(name) + " is a symbolic link"
+                                      : "cannot open " + std::string(name) + ": " + std::strerror(errno);
+      return false;
+    }
+    if (::fstat(fd.get(), &st) != 0 || !S_ISREG(st.st_mode)) {
+      look.problem = std::string(name) + " is not a regular file";
+      return false;
+    }
+    require_private(st, path, "solver cache file");
+    return true;
+  };
+
+  UniqueFd manifest_fd, library_fd;
+  if (!open_file(kManifestName, manifest_fd)) {
+    if (look.problem == std::string("no ") + kManifestName) look.problem += " (an older mbfe's entry, or a copy)";
+    return look;
+  }
+  std::string recorded_sha256;
+  try {
+    look.problem =
+        manifest_mismatch(read_fd(manifest_fd.get(), (entry / kManifestName).string(), kMaxManifestBytes), want,
+                          recorded_sha256);
+  } catch (const std::runtime_error& e) {
+    look.problem = e.what();
+  }
+  if (!look.problem.empty() || !open_file(kLibraryName, library_fd)) return look;
+  try {
+    const std::string bytes = read_fd(library_fd.get(), (entry / kLibraryName).string(), kMaxLibraryBytes);
+    if (frontend::sha256_hex(bytes) != recorded_sha256) {
+      look.problem = "the library's bytes do not match the hash its manifest records (damaged, or changed after "
+                     "it was compiled)";
+      return look;
+    }
+  } catch (const std::runtime_error& e) {
+    look.problem = e.what();
+    return look;
+  }
+
+  // Loaded even when it proves not to fit: a rebuilt library is another
+  // file, loaded afresh.
+  void* handle = open_library_fd(std::move(library_fd), st, look.problem);
+  if (!handle) return look;
+  const auto entry_fn = reinterpret_cast<mbfe_model_entry_fn>(::dlsym(handle, "mbfe_model_entry"));
+  const mbfe_model_v1* solver = entry_fn ? entry_fn() : nullptr;
+  look.problem = entry_fn ? solver_mismatch(solver, want) : "no mbfe_model_entry symbol";
+  if (look.problem.empty()) look.model = solver;
+  return look;
+}
+
+// A name for something this process moves aside, unique across its threads.
+std::string unique_suffix() {
+  static std::atomic<unsigned> counter{0};
+  return std::to_string(::getpid()) + "." + std::to_string(counter++);
+}
+
+// Moves an unusable entry out of the way atomically, then deletes it (a
+// symbolic link itself, never what it points to). Called under the entry's
+// lock; a failed rename means someone without it got there first.
+void discard_entry(int cache, const fs::path& cache_path, const std::string& entry_name) {
+  const std::string trash = entry_name + ".discard." + unique_suffix();
+  if (::renameat(cache, entry_name.c_str(), cache, trash.c_str()) != 0) return;
   std::error_code ec;
-  fs::rename(entry, trash, ec);
-  if (!ec) fs::remove_all(trash, ec);
+  fs::remove_all(cache_path / trash, ec);
 }
 
 // Build folders and discarded entries that a killed process left behind (a
@@ -83,38 +250,104 @@ void remove_stale_leftovers(const fs::path& cache) {
   }
 }
 
+// Takes the entry's lock (an flock on <entry>.lock beside it), waiting for a
+// process that holds it: the one compiling this very solver.
+UniqueFd lock_entry(int cache, const fs::path& cache_path, const std::string& entry_name, const std::string& model,
+                    bool quiet) {
+  const std::string name = entry_name + ".lock";
+  UniqueFd lock(open_beneath(cache, name, O_RDWR | O_CREAT, 0600));
+  struct stat st {};
+  if (!lock || ::fstat(lock.get(), &st) != 0)
+    throw std::runtime_error((cache_path / name).string() + ": cannot open the lock of the solver cache entry: " +
+                             std::strerror(errno));
+  require_private(st, (cache_path / name).string(), "solver cache lock");
+  if (::flock(lock.get(), LOCK_EX | LOCK_NB) == 0) return lock;
+  if (errno != EWOULDBLOCK)
+    throw std::runtime_error((cache_path / name).string() + ": cannot lock: " + std::strerror(errno));
+  if (!quiet) std::cerr << "mbfe: waiting for another process compiling the solver of '" << model << "'\n";
+  while (::flock(lock.get(), LOCK_EX) != 0)
+    if (errno != EINTR)
+      throw std::runtime_error((cache_path / name).string() + ": cannot lock: " + std::strerror(errno));
+  return lock;
+}
+
 // The compiler command: this build's compiler, unless the test-only hook
-// $MBFE_JIT_COMPILER_OVERRIDE names another command (tests/robustness uses it
-// to simulate a failing compiler). It is part of the cache key.
+// $MBFE_JIT_COMPILER_OVERRIDE names another command. It is part of the key.
 std::string jit_compiler() {
   if (const char* cc = std::getenv("MBFE_JIT_COMPILER_OVERRIDE"); cc && *cc) return cc;
   return MBFE_JIT_COMPILER;
 }
 
-const mbfe_model_v1* open_library(const fs::path& library) {
-  void* handle = ::dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) throw std::runtime_error(std::string("cannot load solver: ") + ::dlerror());
-  auto entry = reinterpret_cast<mbfe_model_entry_fn>(::dlsym(handle, "mbfe_model_entry"));
-  if (!entry) {
-    ::dlclose(handle);  // so that a rebuilt library at the same path is loaded afresh
-    throw std::runtime_error(library.string() + ": no mbfe_model_entry symbol");
+std::string shell_quote(const std::string& text) {
+  std::string quoted = "'";
+  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// Compiles the solver into a private build folder, writes its manifest and
+// renames the folder to the entry. Called under the entry's lock. Returns
+// the compile's seconds.
+double build_entry(int cache, const fs::path& cache_path, const std::string& entry_name, const Identity& want,
+                   const gen::GeneratedSolver& sources, const std::string& compiler) {
+  DeferredSignals signals;  // from here, SIGINT, SIGTERM and SIGHUP wait for the clean-up
+  std::string staging_pattern = (cache_path / ".build-XXXXXX").string();
+  if (!::mkdtemp(staging_pattern.data()))
+    throw std::runtime_error(cache_path.string() + ": cannot create a build folder in the solver cache: " +
+                             std::strerror(errno));
+  const fs::path staging(staging_pattern);
+  double seconds = 0.0;
+  try {
+    // The folder just made, opened through the checked cache folder.
+    const UniqueFd folder(open_beneath(cache, staging.filename().string(), O_RDONLY | O_DIRECTORY));
+    struct stat st {};
+    if (!folder || ::fstat(folder.get(), &st) != 0)
+      throw std::runtime_error(staging.string() + ": cannot open the build folder: " + std::strerror(errno));
+    require_private(st, staging.string(), "solver build folder");
+    for (const auto& file : sources.files) write_file_atomically((staging / file.name).string(), file.text);
+    const std::string command = compiler + " " + MBFE_JIT_FLAGS +
+                                " -std=c++17 -shared -fPIC -DMBFE_SHARED_ENTRY -I" +
+                                shell_quote(MBFE_JIT_ABI_INCLUDE) + " " +
+                                shell_quote((staging / (want.model + ".cpp")).string()) + " -o " +
+                                shell_quote((staging / kLibraryName).string());
+    const auto start = std::chrono::steady_clock::now();
+    CompilerRun run = run_compiler(command, kMaxCompilerMessage + 1, signals);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (run.interrupted || signals.caught()) throw CompileInterrupted("interrupted");  // finish() below says by what
+    if (run.status != 0) {
+      if (run.output.size() > kMaxCompilerMessage) run.output = run.output.substr(0, kMaxCompilerMessage) + "\n[...]";
+      throw std::runtime_error("compiling the solver of '" + want.model + "' failed (" + command + "):\n" +
+                               run.output);
+    }
+    // The library as the compiler left it, made the user's alone whatever
+    // the umask, hashed through the descriptor that checked it.
+    const UniqueFd library(open_beneath(folder.get(), kLibraryName, O_RDONLY));
+    if (!library || ::fstat(library.get(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_uid != ::geteuid() ||
+        ::fchmod(library.get(), 0600) != 0)
+      throw std::runtime_error((staging / kLibraryName).string() + ": the compiler left no library of ours");
+    const std::string library_sha256 =
+        frontend::sha256_hex(read_fd(library.get(), (staging / kLibraryName).string(), kMaxLibraryBytes));
+    const std::string manifest = manifest_text(want, library_sha256);
+    const UniqueFd out(open_beneath(folder.get(), kManifestName, O_WRONLY | O_CREAT | O_EXCL, 0600));
+    if (!out || ::write(out.get(), manifest.data(), manifest.size()) != static_cast<ssize_t>(manifest.size()) ||
+        ::fsync(out.get()) != 0)
+      throw std::runtime_error((staging / kManifestName).string() + ": cannot write: " + std::strerror(errno));
+    // Atomic; fails only if a process without the lock (an older mbfe) put
+    // an entry there meanwhile: then that one is examined like any other.
+    if (::renameat(cache, staging.filename().c_str(), cache, entry_name.c_str()) != 0) {
+      std::error_code ec;
+      fs::remove_all(staging, ec);
+    }
+  } catch (...) {
+    std::error_code ec;
+    fs::remove_all(staging, ec);
+    signals.finish();  // a signal that came takes its usual effect now
+    throw;
   }
-  const mbfe_model_v1* model = entry();
-  if (!model || model->abi_version != MBFE_MODEL_ABI_VERSION) {
-    ::dlclose(handle);
-    throw std::runtime_error(library.string() + ": solver ABI version mismatch");
-  }
-  return model;
+  signals.finish();
+  return seconds;
 }
 
 }  // namespace
-
-std::string solver_cache_dir() {
-  if (const char* dir = std::getenv("MBFE_CACHE_DIR"); dir && *dir) return dir;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/mbfe";
-  if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.cache/mbfe";
-  return "/tmp/mbfe-cache-" + std::to_string(::getuid());
-}
 
 LoadedSolver load_solver(const ir::Model& model, bool quiet, bool by_sources) {
   // The key: what the sources would be, without generating them. A model read
@@ -122,8 +355,8 @@ LoadedSolver load_solver(const ir::Model& model, bool quiet, bool by_sources) {
   // code that turns text into sources; a model built otherwise by the sources.
   std::optional<gen::GeneratedSolver> sources;
   const std::string compiler = jit_compiler();
-  std::string key_material = std::string("mbfe ") + gen::generator_version() + "\n" + compiler +
-                             "\n" + MBFE_JIT_FLAGS + "\n";
+  std::string key_material = std::string("mbfe ") + gen::generator_version() + "\ncache 2\n" + compiler + "\n" +
+                             MBFE_JIT_FLAGS + "\n";
   if (!by_sources && !model.source_sha256.empty()) {
     key_material += std::string("fingerprint ") + MBFE_GENERATOR_FINGERPRINT + "\nmodel " + model.name + " " +
                     model.source_sha256 + "\n";
@@ -131,72 +364,51 @@ LoadedSolver load_solver(const ir::Model& model, bool quiet, bool by_sources) {
     sources = gen::generate_solver(model);
     for (const auto& file : sources->files) key_material += file.name + "\n" + file.text;
   }
-  const std::string key = frontend::sha256_hex(key_material).substr(0, 32);
+  Identity want;
+  want.key = frontend::sha256_hex(key_material);
+  want.model = model.name;
+  want.model_sha256 = model.source_sha256;
+  want.coordinates = static_cast<int>(model.bodies.size());
+  want.generator = gen::generator_version();
 
-  const fs::path cache(solver_cache_dir());
-  const fs::path entry = cache / (model.name + "-" + key);
+  const fs::path cache_path(solver_cache_dir());
+  if (::access("/proc/self/fd", X_OK) != 0)
+    throw std::runtime_error("mbfe loads compiled solvers through /proc/self/fd, which this system does not have");
+  const UniqueFd cache = open_cache_folder(cache_path.string());
+  const std::string entry_name = model.name + "-" + want.key.substr(0, 32);
+  const fs::path entry = cache_path / entry_name;
   LoadedSolver result;
   result.library_path = (entry / kLibraryName).string();
 
-  if (fs::exists(entry)) {
-    std::string damage = "checksum mismatch";
-    if (entry_is_intact(entry)) {
-      try {
-        result.model = open_library(entry / kLibraryName);
-        if (!quiet) std::cerr << "mbfe: using cached solver " << result.library_path << "\n";
-        return result;
-      } catch (const std::runtime_error& e) {
-        damage = e.what();  // intact bytes that do not load: rebuild them too
+  // A sound entry is loaded without the lock: entries change only by rename.
+  Look look = look_at_entry(cache.get(), entry_name, entry, want);
+  if (!look.model) {
+    const UniqueFd lock = lock_entry(cache.get(), cache_path, entry_name, model.name, quiet);
+    look = look_at_entry(cache.get(), entry_name, entry, want);  // whoever held the lock may have built it
+    if (!look.model) {
+      if (look.present) {
+        if (!quiet)
+          std::cerr << "mbfe: cached solver " << entry.string() << " cannot be used (" << look.problem
+                    << "); rebuilding it\n";
+        discard_entry(cache.get(), cache_path, entry_name);
       }
+      remove_stale_leftovers(cache_path);
+      if (!sources) sources = gen::generate_solver(model);
+      result.compile_seconds = build_entry(cache.get(), cache_path, entry_name, want, *sources, compiler);
+      look = look_at_entry(cache.get(), entry_name, entry, want);
+      if (!look.model)
+        throw std::runtime_error(entry.string() + ": the solver just compiled cannot be used: " + look.problem);
+      result.compiled_now = true;
     }
-    if (!quiet)
-      std::cerr << "mbfe: cached solver " << entry.string() << " is damaged (" << damage << "); rebuilding\n";
-    discard_entry(entry);
   }
-
-  std::error_code ec;
-  fs::create_directories(cache, ec);
-  if (ec) throw std::runtime_error(cache.string() + ": cannot create the solver cache: " + ec.message());
-  remove_stale_leftovers(cache);
-  std::string staging_pattern = (cache / ".build-XXXXXX").string();
-  if (!::mkdtemp(staging_pattern.data()))
-    throw std::runtime_error(cache.string() + ": cannot create a build folder in the solver cache");
-  const fs::path staging(staging_pattern);
-  try {
-    if (!sources) sources = gen::generate_solver(model);
-    for (const auto& file : sources->files) write_file_atomically((staging / file.name).string(), file.text);
-    const fs::path library = staging / kLibraryName;
-    const std::string command = compiler + " " + MBFE_JIT_FLAGS +
-                                " -std=c++17 -shared -fPIC -DMBFE_SHARED_ENTRY -I" +
-                                shell_quote(MBFE_JIT_ABI_INCLUDE) + " " +
-                                shell_quote((staging / (model.name + ".cpp")).string()) + " -o " +
-                                shell_quote(library.string());
-    const auto start = std::chrono::steady_clock::now();
-    std::string output;
-    const int status = run_captured(command, output);
-    result.compile_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (status != 0) {
-      if (output.size() > kMaxCompilerMessage) output = output.substr(0, kMaxCompilerMessage) + "\n[...]";
-      throw std::runtime_error("compiling the solver of '" + model.name + "' failed (" + command +
-                               "):\n" + output);
-    }
-    write_file_atomically((staging / (std::string(kLibraryName) + ".sha256")).string(),
-                          frontend::sha256_hex(read_file(library.string())));
-    fs::rename(staging, entry, ec);  // atomic; fails if another process got there first
-    if (ec) {
-      fs::remove_all(staging, ec);
-      if (!entry_is_intact(entry)) throw std::runtime_error(entry.string() + ": solver cache entry unusable");
-    }
-  } catch (...) {
-    fs::remove_all(staging, ec);
-    throw;
+  result.model = look.model;
+  if (!quiet) {
+    if (result.compiled_now)
+      std::cerr << "mbfe: compiled the solver of '" << model.name << "' in " << result.compile_seconds
+                << " s; cached as " << result.library_path << "\n";
+    else
+      std::cerr << "mbfe: using cached solver " << result.library_path << "\n";
   }
-  result.model = open_library(entry / kLibraryName);
-  result.compiled_now = true;
-  if (!quiet)
-    std::cerr << "mbfe: compiled the solver of '" << model.name << "' in " << result.compile_seconds
-              << " s; cached as " << result.library_path << "\n";
   return result;
 }
 

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "frontend/parse_model.h"
 #include "tests/support/cli.h"
 
 extern "C" const mbfe_model_v1* mbfe_model_double_pendulum(void);
@@ -114,6 +115,29 @@ TEST(ApiModel, LinkedSolverMatchesTheCachedOneAndRefusesAnotherVersionOfTheFile)
     EXPECT_NE(std::string(e.what()).find("another version of this file"), std::string::npos) << e.what();
   }
   std::remove(edited.c_str());
+}
+
+// Whatever the path, a solver recorded for one version of a model file is not
+// paired with another's IR: same name, same coordinates, another SHA-256.
+TEST(ApiModel, FromIrRefusesASolverOfAnotherVersionOfTheFile) {
+  const std::string path = source_path("models/double_pendulum.yaml");
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  const ir::Model same = frontend::parse_model_text(text.str(), path);
+  EXPECT_NO_THROW(Model::from_ir(same, mbfe_model_double_pendulum()));
+  const ir::Model edited = frontend::parse_model_text(text.str() + "# edited\n", path);
+  try {
+    Model::from_ir(edited, mbfe_model_double_pendulum());
+    FAIL() << "a solver of another version of the file was accepted";
+  } catch (const runtime::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find(edited.source_sha256), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(same.source_sha256), std::string::npos) << e.what();
+  }
+  // An IR built in memory has no file behind it, so nothing to compare.
+  ir::Model built = same;
+  built.source_sha256.clear();
+  EXPECT_NO_THROW(Model::from_ir(built, mbfe_model_double_pendulum()));
 }
 
 TEST(ApiModel, SimulationRowsEqualTheCommandLine) {
