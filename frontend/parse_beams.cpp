@@ -243,9 +243,9 @@ Adjustment ModelParser::parse_adjustment(const MapView& view) {
   if (const Field* policy = view.find("policy")) {
     constexpr AdjustmentPolicy kPolicies[] = {
         AdjustmentPolicy::kCap, AdjustmentPolicy::kPaperEq25, AdjustmentPolicy::kKeepSlow,
-        AdjustmentPolicy::kNone};
+        AdjustmentPolicy::kNone, AdjustmentPolicy::kMass};
     adjustment.policy =
-        kPolicies[view.choice(*policy, {"cap", "paper_eq25", "keep_slow", "none"})];
+        kPolicies[view.choice(*policy, {"cap", "paper_eq25", "keep_slow", "none", "mass"})];
   }
   if (const Field* scope = view.find("scope")) {
     adjustment.scope = view.choice(*scope, {"beam", "joined"}) == 0 ? AdjustmentScope::kBeam : AdjustmentScope::kJoined;

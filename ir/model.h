@@ -117,7 +117,10 @@ struct BeamPointMass {
   SourceLoc loc;
 };
 
-enum class AdjustmentPolicy { kNone, kCap, kPaperEq25, kKeepSlow };
+/// kMass: the modes kCap changes keep their stiffness and get the modal mass
+/// (and damping) that puts their roots where kCap puts them, which keeps the
+/// static compliance exact (docs/damping-adjustment.md).
+enum class AdjustmentPolicy { kNone, kCap, kPaperEq25, kKeepSlow, kMass };
 
 /// What the modes of an adjustment are the modes of: the beam alone, or the
 /// structure of the beams joined to it by links, taut links included

@@ -61,7 +61,8 @@ a "coupled" block with "original" and "adjusted" of the same form).
 A beam with an `adjustment:` block (see docs/damping-adjustment.md) also gets
 the adjusted spectrum: printed beside the original (the paper's Table 1, right
 half) and, in JSON, an "adjusted" block of the same form as "original" plus
-"policy", "omega_limit", "adjusted_modes" and "floored_modes". A beam adjusted
+"policy", "omega_limit", "adjusted_modes" and "floored_modes" (policy mass:
+also "modal_masses", one per mode, 1 where the mode is kept). A beam adjusted
 with the beams linked to it (scope: joined) has no adjusted spectrum of its own
 (JSON: {"scope": "joined"}); the coupled spectrum shows its structure's.
 

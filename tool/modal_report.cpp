@@ -110,6 +110,13 @@ void print_adjusted_text(std::ostream& out, const ir::Beam& b, const runtime::Be
   out << "adjusted (policy " << policy_name(b.adjustment.policy) << ", omega_limit " << b.adjustment.omega_limit
       << " rad/s, margin " << b.adjustment.margin << ", zeta_min " << b.adjustment.zeta_min << "): "
       << r.adjusted.adjusted << " modes adjusted, " << r.adjusted.floored << " raised to zeta_min\n";
+  if (b.adjustment.policy == ir::AdjustmentPolicy::kMass && r.adjusted.adjusted > 0) {
+    double largest = 1.0;
+    for (const runtime::ModalDynamics& m : r.adjusted.modes) largest = std::max(largest, m.m);
+    out << "(policy mass: the adjusted modes keep their stiffness, so the static deflection is the original "
+           "one; their modal masses rise to omega_j^2 / omega_limit^2, up to "
+        << largest << ")\n";
+  }
   const auto left = spectrum_table_lines(r.original_spectrum, all);
   const auto right = spectrum_table_lines(r.adjusted_spectrum, all);
   const std::string blank(spectrum_table_width(), ' ');
@@ -140,6 +147,8 @@ const char* policy_name(ir::AdjustmentPolicy p) {
       return "paper_eq25";
     case ir::AdjustmentPolicy::kKeepSlow:
       return "keep_slow";
+    case ir::AdjustmentPolicy::kMass:
+      return "mass";
   }
   return "?";
 }
@@ -170,6 +179,11 @@ void add_adjusted_json(nlohmann::json& beam, const ir::Beam& b, const runtime::B
   block["zeta_min"] = b.adjustment.zeta_min;
   block["adjusted_modes"] = a.adjusted.adjusted;
   block["floored_modes"] = a.adjusted.floored;
+  if (b.adjustment.policy == ir::AdjustmentPolicy::kMass) {
+    nlohmann::json masses = nlohmann::json::array();
+    for (const runtime::ModalDynamics& m : a.adjusted.modes) masses.push_back(m.m);
+    block["modal_masses"] = std::move(masses);
+  }
   beam["adjusted"] = std::move(block);
 }
 

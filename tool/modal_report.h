@@ -30,7 +30,7 @@ int spectrum_table_width();
 /// forward-Euler h_max = 1.52098e-08 s".
 std::string spectrum_summary(const runtime::StateSpectrum& spectrum, int dof);
 
-/// "cap", "paper_eq25", "keep_slow", "none".
+/// "cap", "paper_eq25", "keep_slow", "none", "mass".
 const char* policy_name(ir::AdjustmentPolicy policy);
 
 /// One beam of `mbfe modal --json`: name, dof, modal_path, natural

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <vector>
 
 #include "runtime/coupled/linearization.h"
 #include "runtime/errors/multibody_errors.h"
@@ -12,18 +14,39 @@ namespace mbfe::runtime {
 
 namespace {
 
-ModelSpectrum from_linearization(const StateSpectrum& full, int coordinates) {
+double largest_modulus(const StateSpectrum& spectrum) {
+  double largest = 0.0;
+  for (const auto& l : spectrum.eigenvalues) largest = std::max(largest, std::abs(l));
+  return largest;
+}
+
+ModelSpectrum from_linearization(const StateSpectrum& linearized, int coordinates) {
   ModelSpectrum out;
-  out.full = full;
-  const SplitSpectrum split = split_growing(full);
-  out.limiting = split.limiting;
-  out.growing = split.growing;
+  out.full = with_zero_modes(linearized);
+  out.limiting = split_growing(out.full).limiting;
+  out.growing = growing_beyond_noise(out.full);
   out.coordinates = coordinates;
   out.linearized = true;
   return out;
 }
 
 }  // namespace
+
+StateSpectrum with_zero_modes(const StateSpectrum& spectrum) {
+  const double zero = kZeroModeRel * largest_modulus(spectrum);
+  std::vector<std::complex<double>> ev = spectrum.eigenvalues;
+  for (auto& l : ev)
+    if (std::abs(l) <= zero) l = 0.0;
+  StateSpectrum out = spectrum_from_eigenvalues(std::move(ev));
+  out.complete = spectrum.complete;
+  return out;
+}
+
+int growing_beyond_noise(const StateSpectrum& spectrum) {
+  const double noise = kLinearizationNoiseRel * largest_modulus(spectrum);
+  return static_cast<int>(std::count_if(spectrum.eigenvalues.begin(), spectrum.eigenvalues.end(),
+                                        [noise](const std::complex<double>& l) { return l.real() > noise; }));
+}
 
 ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
   adjusted = model.resolve_adjusted(adjusted);

@@ -75,7 +75,8 @@ BeamModel analyse_beams(const ir::Model& model, const BeamAnalysisOptions& optio
 std::unique_ptr<ModalBeamOde> modal_beam_ode(const BeamModel& beams, bool adjusted);
 
 /// The static state [q_s; 0] under the load at time t, in the modal
-/// coordinates of modal_beam_ode (eta_j = p_j(t) / k_j): a static start, and
+/// coordinates of modal_beam_ode (eta_j = p_j(t) / k_j, whatever the modal
+/// mass m_j: the original model's K^-1 f under policy mass): a static start, and
 /// the scale a divergence bound is set against. `beams` must outlive `ode`
 /// (its time loads read the beams).
 Eigen::VectorXd modal_static_state(const BeamModel& beams, bool adjusted, ModalBeamOde& ode, double t = 0.0);

@@ -18,10 +18,16 @@ ModalBeamOde::ModalBeamOde(const ModalBasis& basis, const std::vector<ModalDynam
   mphi_ = M * phi_;
   k_.resize(n);
   c_.resize(n);
+  m_.resize(n);
   for (int j = 0; j < n; ++j) {
     k_[j] = modes[j].k;
     c_[j] = modes[j].c;
+    m_[j] = modes[j].m;
+    if (!(m_[j] > 0.0))
+      throw std::invalid_argument("ModalBeamOde: mode " + std::to_string(j + 1) + " has modal mass " +
+                                  std::to_string(m_[j]) + "; expected > 0");
   }
+  unit_mass_ = (m_.array() == 1.0).all();
   p_ = phi_.transpose() * P;
 }
 
@@ -40,25 +46,26 @@ void ModalBeamOde::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot
   if (time_loads_) {
     modal_load_at(t, pt_);
     ydot.tail(n) = pt_ - c_.cwiseProduct(y.tail(n)) - k_.cwiseProduct(y.head(n));
-    return;
+  } else {
+    ydot.tail(n) = p_ - c_.cwiseProduct(y.tail(n)) - k_.cwiseProduct(y.head(n));
   }
-  ydot.tail(n) = p_ - c_.cwiseProduct(y.tail(n)) - k_.cwiseProduct(y.head(n));
+  if (!unit_mass_) ydot.tail(n).array() /= m_.array();
 }
 
 void ModalBeamOde::solve_shifted(double, const Eigen::VectorXd&, double c, const Eigen::VectorXd& b,
                                  Eigen::VectorXd& x) {
-  // (1 + c c_j + c^2 k_j) x_v = b_v - c k_j b_q, x_q = b_q + c x_v, per mode.
+  // (m_j + c c_j + c^2 k_j) x_v = m_j b_v - c k_j b_q, x_q = b_q + c x_v, per mode.
   const Eigen::Index n = k_.size();
   x.resize(2 * n);
-  x.tail(n) = (b.tail(n) - c * k_.cwiseProduct(b.head(n))).array() /
-              (1.0 + c * c_.array() + (c * c) * k_.array());
+  x.tail(n) = (m_.cwiseProduct(b.tail(n)) - c * k_.cwiseProduct(b.head(n))).array() /
+              (m_.array() + c * c_.array() + (c * c) * k_.array());
   x.head(n) = b.head(n) + c * x.tail(n);
 }
 
 void ModalBeamOde::load(double t, Eigen::VectorXd& out) { modal_load_at(t, out); }
 
 void ModalBeamOde::solve_combination(double a, double b, double c, const Eigen::VectorXd& r, Eigen::VectorXd& x) {
-  x = r.array() / (a + b * c_.array() + c * k_.array());
+  x = r.array() / (a * m_.array() + b * c_.array() + c * k_.array());
 }
 
 std::string ModalBeamOde::name(int i) const {

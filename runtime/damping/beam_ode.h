@@ -1,10 +1,11 @@
 // A beam M q'' + C q' + K q = P (original or modally adjusted) as an OdeSystem
 // the integrators step, in mass-normalised modal coordinates: q = Phi eta,
-// every mode decoupled, eta_j'' + c_j eta_j' + k_j eta_j = phi_j^T P. O(n) per
-// right-hand side. Needs a complete basis (every mode): the same model as the
-// nodal one (runtime/structure/nodal_beam_ode.h), only expressed in other
-// coordinates, and every integrator here is linear and commutes with that
-// change of variables.
+// every mode decoupled, m_j eta_j'' + c_j eta_j' + k_j eta_j = phi_j^T P
+// (m_j = 1 unless the policy mass raised it). O(n) per right-hand side. Needs
+// a complete basis (every mode): the same model as the nodal one
+// (runtime/structure/nodal_beam_ode.h), only expressed in other coordinates,
+// and every integrator here is linear and commutes with that change of
+// variables.
 //
 // The load is P (constant) plus, when set, a time-dependent part given as
 // sparse nodal forces at t (runtime/fem/beam_loads.h).
@@ -25,9 +26,10 @@ namespace mbfe::runtime {
 
 class ModalBeamOde final : public LinearSecondOrderSystem {
  public:
-  /// @param basis complete, mass-normalised (n modes). @param modes k_j, c_j
-  /// per mode (size n). @param M, P the nodal mass matrix and load (N).
-  /// @throws std::invalid_argument on size mismatches or a partial basis.
+  /// @param basis complete, mass-normalised (n modes). @param modes m_j, c_j,
+  /// k_j per mode (size n). @param M, P the nodal mass matrix and load (N).
+  /// @throws std::invalid_argument on size mismatches, a partial basis or a
+  /// modal mass that is not > 0.
   ModalBeamOde(const ModalBasis& basis, const std::vector<ModalDynamics>& modes,
                const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& P);
 
@@ -36,7 +38,7 @@ class ModalBeamOde final : public LinearSecondOrderSystem {
   void solve_shifted(double t, const Eigen::VectorXd& y, double c, const Eigen::VectorXd& b,
                      Eigen::VectorXd& x) override;
   void load(double t, Eigen::VectorXd& out) override;
-  void mult_m(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { out = x; }
+  void mult_m(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { out = m_.cwiseProduct(x); }
   void mult_c(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { out = c_.cwiseProduct(x); }
   void mult_k(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { out = k_.cwiseProduct(x); }
   void solve_combination(double a, double b, double c, const Eigen::VectorXd& r, Eigen::VectorXd& x) override;
@@ -55,7 +57,8 @@ class ModalBeamOde final : public LinearSecondOrderSystem {
 
  private:
   Eigen::MatrixXd phi_, mphi_;  // Phi, M Phi
-  Eigen::VectorXd k_, c_, p_;   // per mode; p = Phi^T P
+  Eigen::VectorXd k_, c_, m_, p_;  // per mode; p = Phi^T P
+  bool unit_mass_ = true;          // every m_j == 1: the right-hand side skips the division
   TimeLoadFn time_loads_;
   std::vector<NodalForce> forces_;  // scratch
   Eigen::VectorXd pt_;              // scratch

@@ -11,8 +11,14 @@ double fastest_root(double c, double k) {
   return std::max(std::abs(roots.first), std::abs(roots.second));
 }
 
+double fastest_root(const ModalDynamics& mode) {
+  const auto roots = modal_roots(mode);
+  return std::max(std::abs(roots.first), std::abs(roots.second));
+}
+
 AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const ir::Adjustment& a) {
   AdjustedModes out;
+  out.policy = a.policy;
   out.modes = modes;
   out.change.assign(modes.size(), ModeChange::kKept);
   if (a.policy == ir::AdjustmentPolicy::kNone) return out;
@@ -39,12 +45,17 @@ AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const ir::Ad
       adjust = m.omega > wl;
       if (adjust) m.c = (2.0 + a.margin) * m.omega;
     } else {
-      adjust = fastest_root(m.c, m.k) > wl;
+      adjust = fastest_root(m) > wl;
       if (adjust) {
-        const auto roots = modal_roots(m.c, m.k);
+        const auto roots = modal_roots(m);
         const bool real_roots = roots.first.imag() == 0.0;
         const double slow = std::abs(roots.first);
-        if (a.policy == ir::AdjustmentPolicy::kKeepSlow && real_roots && slow < r_cap) {
+        if (a.policy == ir::AdjustmentPolicy::kMass) {
+          // Stiffness kept: m r^2 + c r + k = m (r^2 + c_star r + k_star).
+          m.m = m.k / out.k_star;
+          m.c = m.m * out.c_star;
+          out.uniform = false;
+        } else if (a.policy == ir::AdjustmentPolicy::kKeepSlow && real_roots && slow < r_cap) {
           m.k = slow * r_cap;
           m.c = slow + r_cap;
           out.uniform = false;
@@ -59,7 +70,9 @@ AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const ir::Ad
       ++out.adjusted;
       continue;
     }
-    const double w = std::sqrt(m.k);
+    // The floor on c / (2 sqrt(k m)); m is 1 unless the input modes carry
+    // their own modal masses.
+    const double w = std::sqrt(m.k * m.m);
     if (w > 0.0 && m.c < 2.0 * w && m.c < 2.0 * a.zeta_min * w) {
       m.c = 2.0 * a.zeta_min * w;
       out.change[j] = ModeChange::kFloored;

@@ -10,6 +10,10 @@
 //              with damping ratio 1 + margin/2; fastest root
 //              r_cap = (zeta + sqrt(zeta^2 - 1)) omega_l (1.370156e5 for
 //              omega_l = 1e5, margin 0.1). Reproduces Table 1 (right half).
+//   mass       the modes cap changes keep k_j = omega_j^2 and get a modal
+//              mass m_j = k_j / omega_l^2 and damping c_j = m_j (2 + margin)
+//              omega_l: m_j r^2 + c_j r + k_j has the cap's roots, and the
+//              static compliance 1 / k_j is the original one.
 //   paper_eq25 eq (25) literally: modes with omega_j > omega_l get
 //              c_j = (2 + margin) omega_j, k_j kept (selection by omega_j, as
 //              the paper writes it).
@@ -21,7 +25,7 @@
 // c / (2 sqrt k) < 1) below zeta_min to zeta_min (c_j = 2 zeta_min omega_j).
 //
 // |r_fast| grows with omega_j for Rayleigh damping, so the adjusted modes of
-// `cap` are a tail of the ascending spectrum: the low-rank form
+// `cap` (and `mass`) are a tail of the ascending spectrum: the low-rank form
 // (docs/damping-adjustment.md, "Back to nodal coordinates";
 // runtime/structure/low_rank_structure.h) needs only the modes below it.
 #pragma once
@@ -38,20 +42,28 @@ namespace mbfe::runtime {
 enum class ModeChange : unsigned char { kKept, kFloored, kAdjusted };
 
 struct AdjustedModes {
+  ir::AdjustmentPolicy policy = ir::AdjustmentPolicy::kNone;  // the policy applied
   std::vector<ModalDynamics> modes;  // one per input mode, same order
   std::vector<ModeChange> change;    // what happened to each
   int adjusted = 0;                  // modes with ModeChange::kAdjusted
   int floored = 0;                   // modes raised to zeta_min
-  /// Every adjusted mode got the same (k_star, c_star) (policy cap): the
-  /// low-rank form applies.
+  /// Every adjusted mode got the same (k_star, c_star) with a unit modal mass
+  /// (policy cap): the cap's low-rank form (runtime/structure/adjusted_parts.h) applies. False
+  /// for policy mass as soon as it changes a mode: its adjusted modes share
+  /// (k_star, c_star) per unit of their modal mass, k_j = k_star m_j and
+  /// c_j = c_star m_j, a low-rank update of M rather than of K and C
+  /// (docs/damping-adjustment.md, "Policy mass").
   bool uniform = true;
-  double k_star = 0.0;  // 1/s^2 (cap: omega_l^2)
-  double c_star = 0.0;  // 1/s   (cap: (2 + margin) omega_l)
+  double k_star = 0.0;  // 1/s^2, omega_l^2 (cap and mass; 0 for none)
+  double c_star = 0.0;  // 1/s, (2 + margin) omega_l (cap and mass; 0 for none)
   double r_cap = 0.0;   // 1/s, modulus of the capped fast root (0 for none/paper_eq25)
 };
 
 /// Modulus of the fastest root of r^2 + c r + k = 0 (sqrt(k) for a complex pair).
 double fastest_root(double c, double k);
+
+/// The same for m r^2 + c r + k = 0 (the mode's own modal mass).
+double fastest_root(const ModalDynamics& mode);
 
 /// Applies `adjustment` (policy, omega_limit rad/s, margin, zeta_min) to the
 /// modes. @throws std::invalid_argument if omega_limit <= 0 (any policy but

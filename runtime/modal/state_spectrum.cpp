@@ -41,6 +41,10 @@ std::pair<std::complex<double>, std::complex<double>> modal_roots(double c, doub
                                                          std::complex<double>(other, 0.0));
 }
 
+std::pair<std::complex<double>, std::complex<double>> modal_roots(const ModalDynamics& mode) {
+  return modal_roots(mode.c / mode.m, mode.k / mode.m);
+}
+
 double forward_euler_limit(const std::vector<std::complex<double>>& eigenvalues) {
   double h = std::numeric_limits<double>::infinity();
   for (const auto& l : eigenvalues) {
@@ -71,7 +75,7 @@ StateSpectrum state_spectrum(const std::vector<ModalDynamics>& modes, bool compl
   std::vector<std::complex<double>> ev;
   ev.reserve(2 * modes.size());
   for (const ModalDynamics& m : modes) {
-    const auto [r1, r2] = modal_roots(m.c, m.k);
+    const auto [r1, r2] = modal_roots(m);
     ev.push_back(r1);
     ev.push_back(r2);
   }

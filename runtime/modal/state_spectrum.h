@@ -3,10 +3,11 @@
 // their table (the paper's Table 1) and the forward-Euler step limit.
 //
 // For a model that decouples in mass-normalised modes (Rayleigh damping, or
-// a modally adjusted one), each mode j obeys q'' + c_j q' + k_j q = p and
-// contributes the two roots of r^2 + c_j r + k_j = 0; state_spectrum() works
-// from those per-mode coefficients, so the original model (k_j = omega_j^2,
-// c_j = alpha + beta omega_j^2) and an adjusted one go through the same code.
+// a modally adjusted one), each mode j obeys m_j q'' + c_j q' + k_j q = p and
+// contributes the two roots of m_j r^2 + c_j r + k_j = 0; state_spectrum()
+// works from those per-mode coefficients, so the original model (m_j = 1,
+// k_j = omega_j^2, c_j = alpha + beta omega_j^2) and an adjusted one (policy
+// mass raises m_j of the capped modes) go through the same code.
 // dense_state_eigenvalues() is the general path (eig of B, any C), used as an
 // independent oracle.
 #pragma once
@@ -19,11 +20,13 @@
 
 namespace mbfe::runtime {
 
-/// One decoupled mode: q'' + c q' + k q = p.
+/// One decoupled mode of a mass-normalised basis: m q'' + c q' + k q = p,
+/// with p = phi^T f the modal load (N for a unit modal mass).
 struct ModalDynamics {
   double omega = 0.0;  // rad/s, the original undamped natural frequency (a label)
-  double c = 0.0;      // 1/s, modal damping
+  double c = 0.0;      // 1/s, modal damping (per unit of the original modal mass)
   double k = 0.0;      // 1/s^2, modal stiffness (omega^2 unless adjusted)
+  double m = 1.0;      // modal mass relative to the original one (1 unless policy mass raised it), > 0
 };
 
 /// Rayleigh damping per mode: c_j = alpha + beta omega_j^2, k_j = omega_j^2.
@@ -34,6 +37,9 @@ std::vector<ModalDynamics> rayleigh_modes(const Eigen::VectorXd& omega, double a
 /// pair, first has the positive imaginary part; for real roots, first is the
 /// slower (smaller modulus).
 std::pair<std::complex<double>, std::complex<double>> modal_roots(double c, double k);
+
+/// The two roots of m r^2 + c r + k = 0 (modal_roots(c / m, k / m)), ordered as above.
+std::pair<std::complex<double>, std::complex<double>> modal_roots(const ModalDynamics& mode);
 
 struct StateSpectrum {
   /// Sorted by modulus ascending; a conjugate pair adjacent, +imag first.
@@ -47,7 +53,7 @@ struct StateSpectrum {
   bool complete = true;
 };
 
-/// The spectrum of a set of decoupled modes (2 roots each).
+/// The spectrum of a set of decoupled modes (2 roots each, of m r^2 + c r + k).
 StateSpectrum state_spectrum(const std::vector<ModalDynamics>& modes, bool complete = true);
 
 /// The spectrum of a Rayleigh-damped model from its modal basis.

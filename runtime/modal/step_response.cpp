@@ -13,9 +13,8 @@ constexpr double kCriticalTol = 1e-7;
 }  // namespace
 
 double ModalStepResponse::eta(int j, double t) const {
-  const double k = modes[j].k, c = modes[j].c;
-  const double st = p[j] / k;
-  const auto r = modal_roots(c, k);
+  const double st = p[j] / modes[j].k;
+  const auto r = modal_roots(modes[j]);  // of m r^2 + c r + k
   if (r.first.imag() != 0.0) {
     const double s = -r.first.real(), wd = r.first.imag();
     return st * (1.0 - std::exp(-s * t) * (std::cos(wd * t) + s / wd * std::sin(wd * t)));

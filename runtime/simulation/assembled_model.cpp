@@ -53,6 +53,18 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
       adjustment_unavailable_at_ = model_.beams[e.beam].adjustment.loc;
     }
   }
+  // Policy mass changes the capped modes' modal mass, a low-rank update of M
+  // that the coupled runtime does not build yet: refused rather than run as
+  // some other model.
+  if (kind_ == ModelKind::kCoupled && adjustment_unavailable_.empty())
+    for (const ir::Beam& b : model_.beams)
+      if (b.adjustment.active() && b.adjustment.policy == ir::AdjustmentPolicy::kMass) {
+        adjustment_unavailable_at_ = b.adjustment.loc;
+        adjustment_unavailable_ = "beam '" + b.name +
+                                  "': policy mass is not yet available in coupled models; use policy cap, or run "
+                                  "the original model (--adjust off)";
+        break;
+      }
   for (const BeamPart& part : beams_.beams) {
     // The low-rank adjusted operators keep the computed modes and cap the
     // rest uniformly: right only if every mode left out is one the cap changes.

@@ -250,6 +250,17 @@ beams:
   EXPECT_EQ(model.beams.size(), 1u);
 }
 
+TEST(ParseModel, AdjustmentPolicyMass) {
+  const Model model = parse_model_text(R"(model: b
+beams:
+  - {name: b, origin: [0, 0], length: 1, elements: 2, section: {area: 1, inertia: 1}, material: {youngs_modulus: 1, density: 1},
+     adjustment: {omega_limit: 2000, policy: mass}}
+)",
+                                       "b.yaml");
+  EXPECT_EQ(model.beams.at(0).adjustment.policy, AdjustmentPolicy::kMass);
+  EXPECT_TRUE(model.beams.at(0).adjustment.active());
+}
+
 // ---- exact messages --------------------------------------------------------
 
 const char* const kTwoLinks = R"(model: m

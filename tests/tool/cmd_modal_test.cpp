@@ -4,6 +4,9 @@
 
 #include <array>
 #include <cstdio>
+#include <fstream>
+#include <unistd.h>
+#include <vector>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <sys/wait.h>
@@ -79,6 +82,38 @@ TEST(CmdModal, EveryShippedBeamModelRuns) {
     ASSERT_EQ(r.status, 0) << m << ": " << r.out;
     EXPECT_GT(nlohmann::json::parse(r.out)["beams"][0]["dof"].get<int>(), 0) << m;
   }
+}
+
+TEST(CmdModal, PolicyMassShowsTheCapsSpectrumAndTheModalMasses) {
+  char dir[] = "/tmp/mbfe-modal-mass-XXXXXX";
+  ASSERT_NE(::mkdtemp(dir), nullptr);
+  const std::string model = std::string(dir) + "/beam.yaml";
+  std::string yaml = test::read_text(std::string(MBFE_SOURCE_DIR) + "/models/paper_beam.yaml");
+  const std::string from = "policy: cap";
+  ASSERT_NE(yaml.find(from), std::string::npos);
+  yaml.replace(yaml.find(from), from.size(), "policy: mass");
+  { std::ofstream(model) << yaml; }
+  const CliRun r = run_cli("modal " + test::shell_quote(model) + " --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const nlohmann::json a = nlohmann::json::parse(r.out)["beams"][0].at("adjusted");
+  EXPECT_EQ(a.at("policy"), "mass");
+  EXPECT_EQ(a.at("adjusted_modes"), 81);  // as the cap: 19 modes kept
+  // The paper's adjusted forward-Euler limit, as with the cap (to round-off of
+  // the roots, 1e-14 relative).
+  EXPECT_NEAR(a.at("h_max").at("forward_euler").get<double>(), 1.45969e-5, 5e-11);
+  const auto masses = a.at("modal_masses").get<std::vector<double>>();
+  const auto omega = nlohmann::json::parse(r.out)["beams"][0].at("natural_frequencies_rad_s").get<std::vector<double>>();
+  ASSERT_EQ(masses.size(), 100u);
+  for (std::size_t j = 0; j < masses.size(); ++j) {
+    if (j < 19) EXPECT_EQ(masses[j], 1.0) << j;
+    else EXPECT_NEAR(masses[j], omega[j] * omega[j] / 1e10, 1e-12 * masses[j]) << j;
+  }
+  const CliRun text = run_cli("modal " + test::shell_quote(model));
+  ASSERT_EQ(text.status, 0) << text.out;
+  EXPECT_NE(text.out.find("adjusted (policy mass, omega_limit 100000 rad/s"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("the adjusted modes keep their stiffness"), std::string::npos) << text.out;
+  std::remove(model.c_str());
+  ::rmdir(dir);
 }
 
 }  // namespace

@@ -56,6 +56,13 @@ TEST(CmdStability, TextAndHelp) {
   EXPECT_EQ(run_cli("stability").status, 2);
 }
 
+TEST(CmdStability, AVehicleAtItsStaticEquilibriumGetsNoGrowthNotice) {
+  const CliRun r = run_cli("stability models/bridge_two_axle_vehicle.yaml");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find("Re > 0"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("a local estimate"), std::string::npos) << r.out;
+}
+
 TEST(CmdSimulateBeam, PaperResultFromTheCommandLine) {
   const std::string ok = tmp("ok.csv"), bad = tmp("bad.csv");
   const CliRun good = run_cli("simulate models/paper_beam.yaml --integrator forward_euler --step 1.4e-5 --t-end 1 "

@@ -44,5 +44,52 @@ TEST(Policies, CapFloorAndEq25PerMode) {
   EXPECT_THROW(adjust_modes(modes, bad), std::invalid_argument);
 }
 
+TEST(Policies, MassKeepsTheStiffnessAndPutsTheRootsWhereTheCapDoes) {
+  std::vector<ModalDynamics> modes{{100.0, 0.2, 1e4}, {2e4, 6e4, 4e8}, {9e5, 1.2e8, 8.1e11}};
+  ir::Adjustment mass = cap(1e5, 0.05);
+  mass.policy = ir::AdjustmentPolicy::kMass;
+  const AdjustedModes capped = adjust_modes(modes, cap(1e5, 0.05));
+  const AdjustedModes a = adjust_modes(modes, mass);
+  EXPECT_EQ(a.policy, ir::AdjustmentPolicy::kMass);
+  EXPECT_EQ(a.change, capped.change);  // the cap's selection and the same floor
+  EXPECT_EQ(a.adjusted, 1);
+  EXPECT_FALSE(a.uniform);  // the cap's low-rank form of K and C does not apply
+  EXPECT_DOUBLE_EQ(a.k_star, 1e10);
+  EXPECT_DOUBLE_EQ(a.c_star, 2.1e5);
+  // Kept and floored modes as the cap leaves them, with a unit modal mass.
+  for (int j : {0, 1}) {
+    EXPECT_EQ(a.modes[j].m, 1.0);
+    EXPECT_EQ(a.modes[j].k, capped.modes[j].k);
+    EXPECT_EQ(a.modes[j].c, capped.modes[j].c);
+  }
+  // The adjusted mode: stiffness kept, m = k / omega_l^2, c = m (2 + margin) omega_l.
+  EXPECT_EQ(a.modes[2].k, 8.1e11);
+  EXPECT_DOUBLE_EQ(a.modes[2].m, 8.1e11 / 1e10);
+  EXPECT_DOUBLE_EQ(a.modes[2].c, 81.0 * 2.1e5);
+  // Its roots (of m r^2 + c r + k) are the cap's, to round-off.
+  const auto r_mass = modal_roots(a.modes[2]);
+  const auto r_cap = modal_roots(capped.modes[2].c, capped.modes[2].k);
+  constexpr double kRoundoffRel = 1e-14;  // two divisions apart
+  EXPECT_NEAR(r_mass.first.real(), r_cap.first.real(), kRoundoffRel * std::abs(r_cap.first));
+  EXPECT_NEAR(r_mass.second.real(), r_cap.second.real(), kRoundoffRel * std::abs(r_cap.second));
+  EXPECT_NEAR(fastest_root(a.modes[2]), (1.05 + std::sqrt(1.05 * 1.05 - 1)) * 1e5, kRootTol);
+  // Nothing above the limit: nothing changed, and the form stays uniform.
+  mass.omega_limit = 1e9;  // above every fastest root (the last mode's: ~1.2e8)
+  const AdjustedModes none = adjust_modes(modes, mass);
+  EXPECT_EQ(none.adjusted, 0);
+  EXPECT_TRUE(none.uniform);
+}
+
+TEST(Policies, TheFloorReadsTheModalMass) {
+  // A mode with its own modal mass 4, k = 4e4 (omega 100), c = 8: a damping
+  // ratio c / (2 sqrt(k m)) = 0.01, raised to 0.05: c = 2 0.05 sqrt(k m) = 40.
+  const std::vector<ModalDynamics> modes{{100.0, 8.0, 4e4, 4.0}};
+  const AdjustedModes a = adjust_modes(modes, cap(1e5, 0.05));
+  ASSERT_EQ(a.change[0], ModeChange::kFloored);
+  EXPECT_DOUBLE_EQ(a.modes[0].c, 40.0);
+  const auto r = modal_roots(a.modes[0]);
+  EXPECT_NEAR(-r.first.real() / std::abs(r.first), 0.05, 1e-12);
+}
+
 }  // namespace
 }  // namespace mbfe::runtime

@@ -85,6 +85,33 @@ TEST(PaperBeam, KeepSlowReachesTheSameLimitAsCap) {
   EXPECT_NEAR(max_modulus(s), 1.370156e5, kReferenceRel * 1.370156e5);
 }
 
+// Policy mass moves the capped modes' roots exactly where the cap does (only
+// the modal mass carries the change, not the stiffness), so Table 1's right
+// half and every stable step come out the same, to the round-off of the two
+// divisions c / m and k / m.
+constexpr double kMassPolicyRootRel = 1e-14;
+
+TEST(PaperBeam, MassPolicyReproducesTable1AndEveryStableStep) {
+  const BeamPart& p = paper_beams().beams.at(0);
+  ir::Adjustment a = paper_model().beams.at(0).adjustment;
+  a.policy = ir::AdjustmentPolicy::kMass;
+  const AdjustedModes mass = adjust_modes(p.original, a);
+  EXPECT_EQ(mass.adjusted, p.adjusted.adjusted);
+  const StateSpectrum s = state_spectrum(mass.modes);
+  const StateSpectrum& cap = p.adjusted_spectrum;
+  ASSERT_EQ(s.eigenvalues.size(), cap.eigenvalues.size());
+  for (std::size_t i = 0; i < s.eigenvalues.size(); ++i)
+    EXPECT_LE(std::abs(s.eigenvalues[i] - cap.eigenvalues[i]), kMassPolicyRootRel * std::abs(cap.eigenvalues[i]))
+        << "eigenvalue " << i + 1;
+  EXPECT_EQ(s.oscillatory_pairs, cap.oscillatory_pairs);
+  EXPECT_NEAR(max_modulus(s), 1.370156e5, kReferenceRel * 1.370156e5);
+  for (const IntegratorSpec& integrator : advisor_integrators()) {
+    const StepLimit lm = stable_step(integrator, s.eigenvalues), lc = stable_step(integrator, cap.eigenvalues);
+    EXPECT_EQ(lm.kind, lc.kind) << integrator.name;
+    if (lc.kind == StepLimit::Kind::kFinite) EXPECT_NEAR(lm.h, lc.h, 1e-12 * lc.h) << integrator.name;
+  }
+}
+
 /// Forward Euler from rest on the original (nodal, sparse) or adjusted (modal) model.
 SimulationResult run_forward_euler(LinearSecondOrderSystem& ode, double h, double t_end) {
   SimulationOptions opt;

@@ -45,5 +45,25 @@ TEST(ModalStepResponse, MatchesIntegrationInEveryRegime) {
   }
 }
 
+TEST(ModalStepResponse, ReadsTheModalMass) {
+  // m eta'' + c eta' + k eta = p with m = 4 (policy mass): against RK4 on
+  // eta'' + (c/m) eta' + (k/m) eta = p/m, in each regime; the static value p/k
+  // does not depend on m.
+  constexpr double kMass = 4.0;
+  const double cases[][2] = {{kMass * 2 * 0.05 * 20.0, kMass * 400.0}, {kMass * 2 * 10.0, kMass * 100.0},
+                             {kMass * 2 * 5.0 * 3.0, kMass * 9.0}};
+  for (const auto& ck : cases) {
+    ModalStepResponse r;
+    r.modes = {{std::sqrt(ck[1]), ck[0], ck[1], kMass}};
+    r.p = Eigen::VectorXd::Constant(1, 2.5);
+    r.g = Eigen::VectorXd::Constant(1, 1.0);
+    const double scale = r.w_static();
+    EXPECT_DOUBLE_EQ(scale, 2.5 / ck[1]);
+    for (double t : {0.05, 0.3, 2.0})
+      EXPECT_NEAR(r.w(t), integrate(ck[0] / kMass, ck[1] / kMass, 2.5 / kMass, t), kRk4Tol * scale)
+          << "c = " << ck[0] << ", t = " << t;
+  }
+}
+
 }  // namespace
 }  // namespace mbfe::runtime
