@@ -41,6 +41,8 @@
 //   name_double_underscore, name_too_long, point_name_with_space, name_true
 // - very long strings: long_string_as_number, long_unknown_key, name_too_long
 // - deep nesting: deep_brackets, deep_braces_unclosed, deep_indentation, deep_dashes
+// - spatial models and closed loops: spatial_zero_axis, spatial_inertia_triangle,
+//   spatial_with_beam, constraint_same_body
 // - binary garbage and non-text: garbage.bin (written by make_garbage.py), nul_byte,
 //   invalid_utf8, control_character
 // A truly empty (0-byte) file cannot carry the header; parse_model_test covers it.
