@@ -10,9 +10,9 @@
 #include "generator/emit/solver_files.h"
 #include "generator/symbolic/contact_kinematics.h"
 #include "generator/symbolic/cse.h"
+#include "generator/symbolic/driven_motion.h"
 #include "generator/symbolic/rigid_dynamics.h"
 #include "generator/symbolic/rigid_jacobians.h"
-#include "generator/symbolic/time_functions.h"
 #include "ir/model_error.h"
 
 namespace mbfe::gen {
@@ -142,21 +142,8 @@ GeneratedSolver generate_solver_unchecked(const ir::Model& model) {
   }
 
   // Driven joints: q, q' and q'' of each motion, derived here in closed form.
-  Kernel motion{"motion", "double t, double* q, double* qd, double* qdd",
-                "Driven joints, in the order of kDrivenCoordinates: q(t), q'(t), q''(t).", {}, {}};
-  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
-    const auto& m = model.bodies[i].joint.motion;
-    if (!m) continue;
-    const std::string k = std::to_string(parts.driven.size());
-    const GiNaC::ex f = to_ginac(*m, d.t);
-    const GiNaC::ex df = f.diff(d.t);
-    motion.outputs.push_back({"q[" + k + "]", d.code.define(f)});
-    motion.outputs.push_back({"qd[" + k + "]", d.code.define(df)});
-    motion.outputs.push_back({"qdd[" + k + "]", d.code.define(df.diff(d.t))});
-    parts.driven.push_back(static_cast<int>(i));
-  }
+  Kernel motion = derive_motion_kernel(model, d.t, d.code, parts.driven);
   if (!parts.driven.empty()) {
-    motion.statements = d.code.closure(motion.outputs);
     eliminate_common_subexpressions(motion);
     const EmittedKernel e = emit_kernel(motion, inputs, params, "static ");
     solver.operations.push_back({motion.name, e.emitted, e.executed});
