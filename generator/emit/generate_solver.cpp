@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "generator/emit/generate_spatial_solver.h"
 #include "generator/emit/kernel_emitter.h"
 #include "generator/emit/solver_files.h"
 #include "generator/symbolic/contact_kinematics.h"
@@ -41,7 +42,7 @@ GeneratedSolver generate_solver(const ir::Model& model) {
   if (model.bodies.empty())
     throw std::invalid_argument("model '" + model.name + "' has no bodies: nothing to generate");
   try {
-    return generate_solver_unchecked(model);
+    return model.dimension == 3 ? generate_spatial_solver(model) : generate_solver_unchecked(model);
   } catch (const std::overflow_error& e) {
     // Every number of the file is finite, but products of huge ones (mass
     // 1e300 at com 1e300) overflow a double: bad input, reported as such

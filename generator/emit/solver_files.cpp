@@ -30,6 +30,16 @@ std::string banner(const ir::Model& model, const std::string& file, const Genera
   return b.str();
 }
 
+std::string loop_table(const std::vector<LoopTableEntry>& loops) {
+  if (loops.empty()) return "";
+  std::ostringstream table;
+  table << "const mbfe_loop_constraint_v1 kLoops[] = {\n";
+  for (const LoopTableEntry& loop : loops)
+    table << "    {\"" << loop.name << "\", " << loop.type << ", " << loop.first_row << ", " << loop.rows << "},\n";
+  table << "};\n\n";
+  return table.str();
+}
+
 std::string solver_header(const ir::Model& model, const GeneratedSolver& solver) {
   const std::string& name = model.name;
   const int n = static_cast<int>(model.bodies.size());
