@@ -12,6 +12,8 @@
 #include "generator/symbolic/contact_kinematics.h"
 #include "generator/symbolic/cse.h"
 #include "generator/symbolic/driven_motion.h"
+#include "generator/symbolic/loop_constraints.h"
+#include "generator/symbolic/loop_kinematics.h"
 #include "generator/symbolic/rigid_dynamics.h"
 #include "generator/symbolic/rigid_jacobians.h"
 #include "ir/model_error.h"
@@ -149,6 +151,24 @@ GeneratedSolver generate_solver_unchecked(const ir::Model& model) {
     const EmittedKernel e = emit_kernel(motion, inputs, params, "static ");
     solver.operations.push_back({motion.name, e.emitted, e.executed});
     parts.motion = "\n" + e.text;
+  }
+
+  // Closed loops (after every other kernel: their intermediates do not
+  // change the numbering of the others).
+  if (!model.constraints.empty()) {
+    const LoopKinematics loop_kinematics = planar_loop_kinematics(model, d.kinematics, d.qd, d.code);
+    LoopKernels loops = derive_loop_constraints(model, loop_kinematics, "qd", d.code);
+    std::ostringstream text;
+    for (Kernel* k : {&loops.constraints, &loops.jacobian, &loops.gamma}) {
+      eliminate_common_subexpressions(*k);
+      const EmittedKernel e = emit_kernel(*k, inputs, params, "static ");
+      solver.operations.push_back({k->name, e.emitted, e.executed});
+      text << "\n" << e.text;
+    }
+    parts.loops = text.str();
+    for (const LoopKernels::Entry& entry : loops.entries)
+      parts.loop_entries.push_back({entry.name, entry.type, entry.first_row, entry.rows});
+    parts.loop_rows = loops.rows;
   }
 
   std::ostringstream points;

@@ -9,6 +9,8 @@
 #include "generator/emit/spatial_solver_files.h"
 #include "generator/symbolic/cse.h"
 #include "generator/symbolic/driven_motion.h"
+#include "generator/symbolic/loop_constraints.h"
+#include "generator/symbolic/loop_kinematics.h"
 #include "generator/symbolic/spatial_dynamics.h"
 
 namespace mbfe::gen {
@@ -58,6 +60,22 @@ GeneratedSolver generate_spatial_solver(const ir::Model& model) {
       parts.driven_velocities.push_back(d.layout.first_velocity[b]);
       parts.driven_positions.push_back(d.layout.first_position[b]);
     }
+  }
+
+  if (!model.constraints.empty()) {
+    const LoopKinematics loop_kinematics = spatial_loop_kinematics(model, d.layout, d.kinematics);
+    LoopKernels loops = derive_loop_constraints(model, loop_kinematics, "v", d.code);
+    std::ostringstream text;
+    for (Kernel* k : {&loops.constraints, &loops.jacobian, &loops.gamma}) {
+      eliminate_common_subexpressions(*k);
+      const EmittedKernel e = emit_kernel(*k, inputs, params, "static ");
+      solver.operations.push_back({k->name, e.emitted, e.executed});
+      text << "\n" << e.text;
+    }
+    parts.loops = text.str();
+    for (const LoopKernels::Entry& entry : loops.entries)
+      parts.loop_entries.push_back({entry.name, entry.type, entry.first_row, entry.rows});
+    parts.loop_rows = loops.rows;
   }
 
   std::ostringstream points;
