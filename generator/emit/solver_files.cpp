@@ -23,7 +23,8 @@ std::string banner(const ir::Model& model, const std::string& file, const Genera
     b << " total " << count(solver.total_emitted(), solver.total_executed()) << "; fused dynamics "
       << count(solver.fused.emitted, solver.fused.executed) << ".\n";
     if (solver.assembly_pairs > 0)
-      b << "// M is assembled by a loop with one pass per (ancestor, descendant) pair of bodies: "
+      b << "// M is assembled by a loop with one pass per (ancestor, descendant) pair of "
+        << (model.dimension == 3 ? "velocity coordinates: " : "bodies: ")
         << count_of(solver.assembly_pairs, "pass", "passes") << ", " << solver.assembly_operations_per_pass
         << " operations each.\n";
   }
