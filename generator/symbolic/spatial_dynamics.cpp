@@ -73,7 +73,7 @@ void derive_spatial_dynamics(const ir::Model& model, SpatialDerivation& d) {
     for (std::size_t c = 0; c < kin[b].columns.size(); ++c) {
       const int j = d.layout.first_velocity[b] + static_cast<int>(c);
       const SpatialColumn& column = kin[b].columns[c];
-      const ex f = project(column, forces.inertial_force[b], forces.inertial_moment[b]);
+      const ex f = project(kin[b].local_columns[c], forces.inertial_force[b], forces.inertial_moment[b]);
       const ex q = project(column, forces.applied_force[b], forces.applied_moment[b]) + forces.spring[j];
       d.inertial_forces.outputs.push_back({index("F", j), code.define(f)});
       d.generalized_forces.outputs.push_back({index("Q", j), code.define(q)});

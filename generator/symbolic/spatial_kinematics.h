@@ -2,8 +2,11 @@
 // rigid_kinematics.h: for every body, ground outwards, its rotation matrix
 // (each sine and cosine computed once), joint origin, the unit motion of each
 // of its velocity coordinates, its angular velocity, and the accelerations
-// with v' = 0 (the velocity-product terms). Everything in the ground frame;
-// every quantity a named intermediate of the code list.
+// with v' = 0 (the velocity-product terms), every quantity a named
+// intermediate of the code list. Twice: in the ground frame (for M, Q, points
+// and loops) and in the body's own frame (for F: there the joint offsets,
+// axes and inertias are constants, so the recursion costs a rotation by the
+// joint's own, sparse, rotation per vector instead of full matrix products).
 //
 // Conventions (docs/model-format.md, "Spatial models"): the joint frame is
 // the parent frame translated to `at` and turned by the fixed roll-pitch-yaw
@@ -47,6 +50,14 @@ struct SpatialBodyKinematics {
   Vec3x velocity;         // velocity of o_i
   Vec3x alpha;            // angular acceleration with v' = 0
   Vec3x bias_accel;       // acceleration of o_i with v' = 0
+
+  // The same motion in the body's own frame.
+  Mat3x relative;         // E_i = R_parent^T R_i: body frame -> parent frame
+  Vec3x local_offset;     // o_i - o_parent in the parent frame
+  std::vector<SpatialColumn> local_columns;  // the columns in the body frame
+  Vec3x local_omega;      // angular velocity, body frame
+  Vec3x local_alpha;      // angular acceleration with v' = 0, body frame
+  Vec3x local_accel;      // acceleration of o_i with v' = 0, body frame
 };
 
 /// The kinematics of every body of a spatial `model` in terms of q (nq

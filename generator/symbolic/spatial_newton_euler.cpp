@@ -56,30 +56,31 @@ SpatialSubtreeForces spatial_newton_euler_pass(const ir::Model& model, const ir:
     const ir::Body& body = model.bodies[i];
     const SpatialBodyKinematics& k = kin[i];
     const ex mass = exact(body.mass);
-    const Vec3x& c = k.com_offset;
-    // Centre-of-mass acceleration with v' = 0: a_i + a(w)_i x c + w_i x (w_i x c).
-    const Vec3x com_accel = add(add(k.bias_accel, cross(k.alpha, c)), cross(k.omega, cross(k.omega, c)));
+    // Inertial: in the body frame, where the centre of mass and the inertia
+    // are constants. Centre-of-mass acceleration with v' = 0:
+    // a_i + a(w)_i x com + w_i x (w_i x com), and Euler's equation
+    // I a(w) + w x I w (not through temporaries: w x I w then cancels where
+    // I has equal moments).
+    const Vec3x com = constant(body.com3);
+    const Vec3x com_accel =
+        add(add(k.local_accel, cross(k.local_alpha, com)), cross(k.local_omega, cross(k.local_omega, com)));
     const Vec3x momentum_rate = define(code, scale(mass, com_accel));
-    // Euler's equation in the body frame, where the inertia is a constant:
-    // I a(w)_b + w_b x I w_b with w_b = R^T w, a(w)_b = R^T a(w).
     const Sym3x inertia = constant(body.inertia3);
-    Vec3x euler = zero3();
-    if (!(inertia.xx.is_zero() && inertia.yy.is_zero() && inertia.zz.is_zero())) {
-      const Vec3x omega_body = define(code, mul_transposed(k.rotation, k.omega));
-      const Vec3x alpha_body = define(code, mul_transposed(k.rotation, k.alpha));
-      // Not a temporary: w_b x I w_b then cancels where I has equal moments.
-      const Vec3x spin = mul(inertia, omega_body);
-      euler = define(code, mul(k.rotation, define(code, add(mul(inertia, alpha_body), cross(omega_body, spin)))));
-    }
+    const Vec3x euler = add(mul(inertia, k.local_alpha), cross(k.local_omega, mul(inertia, k.local_omega)));
     Vec3x f_in = momentum_rate;
-    Vec3x n_in = add(cross(c, momentum_rate), euler);
+    Vec3x n_in = add(cross(com, momentum_rate), euler);
+    // Applied: in the ground frame (gravity is a constant there).
+    const Vec3x& c = k.com_offset;
     const Vec3x weight = scale(mass, gravity);
     Vec3x f_ap = add(weight, load_force[i]);
     Vec3x n_ap = add(cross(c, weight), load_moment[i]);
     for (int child : children[i]) {
+      // A child's force and moment turned into this body's frame: E_c f_c.
+      const Vec3x child_force = define(code, mul(kin[child].relative, out.inertial_force[child]));
+      f_in = add(f_in, child_force);
+      n_in = add(add(n_in, mul(kin[child].relative, out.inertial_moment[child])),
+                 cross(kin[child].local_offset, child_force));
       const Vec3x& lever = kin[child].offset;
-      f_in = add(f_in, out.inertial_force[child]);
-      n_in = add(add(n_in, out.inertial_moment[child]), cross(lever, out.inertial_force[child]));
       f_ap = add(f_ap, out.applied_force[child]);
       n_ap = add(add(n_ap, out.applied_moment[child]), cross(lever, out.applied_force[child]));
     }

@@ -1,9 +1,10 @@
 // The backward pass of the spatial derivation (the recursive Newton-Euler
 // algorithm with v' = 0), the counterpart of newton_euler.h: for every body,
 // leaves to ground, the net force and the moment about its joint origin that
-// its subtree needs (inertial) and receives (applied: gravity, point forces,
-// torques), and the spring-damper terms of its joint. Projected on the
-// joint's motion columns they are F and Q of M v' + F = Q.
+// its subtree needs (inertial, in the body frame) and receives (applied:
+// gravity, point forces, torques, in the ground frame), and the
+// spring-damper terms of its joint. Projected on the joint's motion columns
+// they are F and Q of M v' + F = Q.
 #pragma once
 
 #include <ginac/ginac.h>
@@ -18,8 +19,10 @@
 
 namespace mbfe::gen {
 
-/// Per body: subtree forces and moments about its joint origin (ground
-/// frame), and per velocity coordinate the spring-damper generalized force.
+/// Per body: subtree forces and moments about its joint origin, inertial in
+/// the body's own frame (project them on SpatialBodyKinematics::local_columns)
+/// and applied in the ground frame (on columns); per velocity coordinate the
+/// spring-damper generalized force.
 struct SpatialSubtreeForces {
   std::vector<Vec3x> inertial_force, applied_force;
   std::vector<Vec3x> inertial_moment, applied_moment;
