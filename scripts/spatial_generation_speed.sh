@@ -42,5 +42,8 @@ xs = [math.log(n) for n, _ in points]
 ys = [math.log(ops) for _, ops in points]
 mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
 slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
-print(f"\nEmitted operations of the chains grow as N^{slope:.2f} (least squares on log N, log ops, N = 5..40).")
+print(f"\nEmitted operations of the chains: N^{slope:.2f} fitted over N = 5..40 (least squares on log N, log ops);")
+print(f"from 20 to 40 joints x{points[3][1] / points[2][1]:.2f} (N^{math.log2(points[3][1] / points[2][1]):.2f}); "
+      "per added joint: " + ", ".join(f"{(b[1] - a[1]) / (b[0] - a[0]):.0f}" for a, b in zip(points, points[1:]))
+      + " (5-10, 10-20, 20-40).")
 PY

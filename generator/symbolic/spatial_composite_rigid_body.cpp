@@ -31,22 +31,21 @@ SpatialCompositeBodies spatial_composite_bodies(const ir::Model& model, const st
   for (int i = n - 1; i >= 0; --i) {
     const ir::Body& body = model.bodies[i];
     const ex mass = exact(body.mass);
-    const Vec3x& c = kin[i].com_offset;
-    // The body's own inertia about o_i: R I R^T + m (|c|^2 I - c c^T), where
-    // |c|^2 = |com|^2 is a constant.
-    const ir::Vec3& com = body.com3;
-    const ex com_squared = exact(com[0]) * exact(com[0]) + exact(com[1]) * exact(com[1]) + exact(com[2]) * exact(com[2]);
-    Sym3x inertia = add(rotate(kin[i].rotation, constant(body.inertia3)), point_inertia(mass, c, com_squared));
+    // In the body's own frame the body's inertia about o_i is a constant:
+    // I + m (|com|^2 1 - com com^T).
+    const Vec3x com = constant(body.com3);
+    Sym3x inertia = add(constant(body.inertia3), point_inertia(mass, com, dot(com, com)));
     ex total = mass;
-    Vec3x h = scale(mass, c);
+    Vec3x h = scale(mass, com);
     for (int child : children[i]) {
-      // A subtree (mass C, first moment h_c and inertia J_c about o_c) about
-      // o_i, with d = o_c - o_i:
-      //   J = J_c + (2 h_c . d + C |d|^2) I - (h_c d^T + d h_c^T + C d d^T).
-      const Vec3x& d = kin[child].offset;
+      // A subtree (mass C, first moment h_c and inertia J_c about o_c in the
+      // child's frame) turned into this frame by the child's joint rotation E
+      // and moved to o_i, with d = o_c - o_i in this frame:
+      //   h = E h_c,   J = E J_c E^T + (2 h . d + C |d|^2) 1 - (h d^T + d h^T + C d d^T).
+      const Vec3x& d = kin[child].local_offset;
       const ex& cm = out.mass[child];
-      const Vec3x& hc = out.first_moment[child];
-      const Sym3x& jc = out.inertia[child];
+      const Vec3x hc = define(code, mul(kin[child].relative, out.first_moment[child]));
+      const Sym3x jc = rotate(kin[child].relative, out.inertia[child]);
       const ex trace_part = 2 * dot(hc, d) + cm * kin[child].offset_squared;
       const Sym3x shifted{jc.xx + trace_part - 2 * hc.x * d.x - cm * d.x * d.x,
                           jc.yy + trace_part - 2 * hc.y * d.y - cm * d.y * d.y,
@@ -82,12 +81,15 @@ void spatial_mass_matrix_outputs(const ir::Model& model, const ir::CoordinateLay
                                  const SpatialCompositeBodies& composite, CodeList& code, Kernel& mass_matrix) {
   // Spatial vectors at the ground origin, (angular, linear). A unit rate of
   // coordinate k moves its body's subtree with angular velocity w and its
-  // origin o_k with velocity l (the column). The subtree's momentum is then
-  //   p = C l + w x h,   L(o_k) = J w + h x l,   L(0) = L(o_k) + o_k x p,
-  // U_k = (L(0), p); S_j = (w_j, l_j + o_j x w_j); and M_jk = S_j . U_k for
-  // every coordinate j on the path from k to the ground (in the tree of
-  // velocity coordinates, velocity_parents()). S and U are O(N)
-  // straight-line code; the pairs are summed by a loop in the emitted code.
+  // origin o_k with velocity l (the column). The subtree's momentum is then,
+  // in the body frame (where the composite body of
+  // spatial_composite_bodies() is) and turned to the ground by R_k,
+  //   p = C l + w x h,   L(o_k) = J w + h x l,   L(0) = R_k L(o_k) + o_k x R_k p,
+  // U_k = (L(0), R_k p); S_j = (w_j, l_j + o_j x w_j) in the ground frame;
+  // and M_jk = S_j . U_k for every coordinate j on the path from k to the
+  // ground (in the tree of velocity coordinates, velocity_parents()). S and U
+  // are O(N) straight-line code; the pairs are summed by a loop in the
+  // emitted code.
   constexpr int kSpatial = 6;
   AncestorPairAssembly assembly;
   assembly.target = "M";
@@ -107,9 +109,12 @@ void spatial_mass_matrix_outputs(const ir::Model& model, const ir::CoordinateLay
     for (std::size_t c = 0; c < k.columns.size(); ++c) {
       const int j = layout.first_velocity[b] + static_cast<int>(c);
       const SpatialColumn& column = k.columns[c];
-      const Vec3x linear_momentum = define(code, add(scale(mass, column.linear), cross(column.angular, h)));
+      const SpatialColumn& local = k.local_columns[c];
+      const Vec3x linear_momentum =
+          define(code, mul(k.rotation, define(code, add(scale(mass, local.linear), cross(local.angular, h)))));
       const Vec3x angular_momentum =
-          add(add(mul(inertia, column.angular), cross(h, column.linear)), cross(k.origin, linear_momentum));
+          add(mul(k.rotation, define(code, add(mul(inertia, local.angular), cross(h, local.linear)))),
+              cross(k.origin, linear_momentum));
       std::array<ex, kSpatial> momentum{angular_momentum.x, angular_momentum.y, angular_momentum.z,
                                         linear_momentum.x,  linear_momentum.y,  linear_momentum.z};
       motion_of[j] = at_ground_origin(column, k.origin);

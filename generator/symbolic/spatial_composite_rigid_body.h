@@ -1,7 +1,8 @@
 // The mass matrix of a spatial tree by the composite-rigid-body algorithm,
 // the counterpart of composite_rigid_body.h: the mass, first moment and
-// rotational inertia of every subtree about its joint origin in the ground
-// frame (a backward pass); for each velocity coordinate j its unit motion
+// rotational inertia of every subtree about its joint origin in the body's
+// own frame (a backward pass, each child's turned by its sparse joint
+// rotation); for each velocity coordinate j its unit motion
 // S_j and for each k the momentum U_k of k's subtree moving with a unit rate
 // of k, both spatial vectors (angular, linear) at the ground origin; and the
 // loop over (ancestor, descendant) pairs of velocity coordinates that sums
@@ -21,7 +22,7 @@
 namespace mbfe::gen {
 
 /// Per body: mass, first moment h_k and rotational inertia J_k of its
-/// subtree about its joint origin o_k, ground frame.
+/// subtree about its joint origin o_k, in the body's own frame.
 struct SpatialCompositeBodies {
   std::vector<GiNaC::ex> mass;    // a constant
   std::vector<Vec3x> first_moment;

@@ -1,5 +1,6 @@
-// Operation counts of spatial solvers: the emitted code of a chain grows at
-// most as N^1.2 (fitted over 5 to 40 joints), the pair loop of M runs once per
+// Operation counts of spatial solvers: the emitted code of a chain grows
+// linearly (as N^1.06 from 20 to 40 joints, the same cost per added joint
+// from 10 on), the pair loop of M runs once per
 // (ancestor, descendant) pair of velocity coordinates (a quaternion joint's
 // three count as three coordinates in series), and the banner says both.
 #include <gtest/gtest.h>
@@ -15,8 +16,15 @@
 namespace mbfe {
 namespace {
 
-// The target: emitted operations growing at most ~N^1.2 for chains.
+// The target: emitted operations growing at most ~N^1.2 for chains. The code
+// is linear in N (a constant number of operations per joint), but the first
+// two or three joints of a chain cost less (near the ground the rotations
+// are sparse), which bends a power law fitted from 5 joints up (1.22);
+// doubling a long chain shows the growth itself (about 2^1.06).
 constexpr double kMaxGrowthExponent = 1.2;
+// Operations per added joint, from 10 to 20 and from 20 to 40 joints: the
+// same within this fraction when the code is linear (6 % today).
+constexpr double kMarginalCostSpread = 0.15;
 // M's spatial pair loop body: S_j . U_k, 6 products and 5 sums.
 constexpr long kOperationsPerPass = 11;
 
@@ -43,27 +51,18 @@ long emitted(const gen::GeneratedSolver& s, const std::string& name) {
   return 0;
 }
 
-TEST(SpatialOperationCounts, EmittedOperationsOfChainsGrowAtMostAsNToThe1Point2) {
-  std::vector<double> log_n, log_ops;
-  for (int n : {5, 10, 20, 40}) {
+TEST(SpatialOperationCounts, EmittedOperationsOfChainsGrowLinearly) {
+  std::vector<double> ops;
+  for (int n : {10, 20, 40}) {
     const gen::GeneratedSolver s = generate(spatial_chain(n));
-    log_n.push_back(std::log(n));
-    log_ops.push_back(std::log(static_cast<double>(s.total_emitted())));
+    ops.push_back(static_cast<double>(s.total_emitted()));
     // M's straight-line part is O(N) too: its pairs are a loop.
-    EXPECT_LT(emitted(s, "mass_matrix"), 250L * n) << n << " joints";
+    EXPECT_LT(emitted(s, "mass_matrix"), 150L * n) << n << " joints";
   }
-  // Least squares slope of log ops against log N.
-  double mx = 0, my = 0;
-  for (std::size_t i = 0; i < log_n.size(); ++i) {
-    mx += log_n[i] / log_n.size();
-    my += log_ops[i] / log_n.size();
-  }
-  double sxy = 0, sxx = 0;
-  for (std::size_t i = 0; i < log_n.size(); ++i) {
-    sxy += (log_n[i] - mx) * (log_ops[i] - my);
-    sxx += (log_n[i] - mx) * (log_n[i] - mx);
-  }
-  EXPECT_LT(sxy / sxx, kMaxGrowthExponent);
+  EXPECT_LT(std::log2(ops[2] / ops[1]), kMaxGrowthExponent) << ops[1] << " -> " << ops[2] << " operations";
+  const double per_joint_short = (ops[1] - ops[0]) / 10, per_joint_long = (ops[2] - ops[1]) / 20;
+  EXPECT_LT(std::fabs(per_joint_long / per_joint_short - 1), kMarginalCostSpread)
+      << per_joint_short << " and " << per_joint_long << " operations per joint";
 }
 
 TEST(SpatialOperationCounts, PairLoopCountsVelocityCoordinates) {
