@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Generation of spatial models, measured (docs/performance.md, "Spatial
 # models"): the operations emitted for chains of 5 to 40 joints with the
-# exponent of their growth fitted, and the time `mbfe generate` takes for the
-# chains and the 35-joint humanoid tree of scripts/make_spatial_tree.py.
+# exponent of their growth fitted, and the CPU time (user + system) of the
+# whole `mbfe generate` process for the chains and the 35-joint humanoid tree
+# of scripts/make_spatial_tree.py.
 #   scripts/spatial_generation_speed.sh [BUILD_DIR]     (default build)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,10 +12,11 @@ mbfe="${1:-build}/bin/mbfe"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-measure() {  # model name -> "seconds emitted executed fused_executed"
+measure() {  # model name -> "cpu_seconds emitted executed fused_executed"
   local model=$1 name=$2
   local seconds
-  seconds=$( { /usr/bin/time -f "%e" "$mbfe" generate "$model" -o "$work/$name" --quiet; } 2>&1 )
+  seconds=$( { /usr/bin/time -f "%U %S" "$mbfe" generate "$model" -o "$work/$name" --quiet; } 2>&1 |
+             awk '{printf "%.2f", $1 + $2}')
   local banner
   banner=$(grep -m1 "^// Operations per kernel" "$work/$name/$name.h")
   local total fused
@@ -23,7 +25,7 @@ measure() {  # model name -> "seconds emitted executed fused_executed"
   echo "$seconds $total $fused"
 }
 
-echo "| model | joints | generate (s) | emitted M+F+Q | executed M+F+Q | executed fused |"
+echo "| model | joints | mbfe generate, CPU (s) | emitted M+F+Q | executed M+F+Q | executed fused |"
 echo "|---|---|---|---|---|---|"
 : >"$work/fit"
 for n in 5 10 20 40; do
