@@ -353,6 +353,7 @@ const mbfe_model_v1 kModel = {
     loop_constraints,
     loop_jacobian,
     loop_gamma,
+    nullptr,  // point_position3: spatial models only
 };
 
 }  // namespace

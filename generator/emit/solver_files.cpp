@@ -54,7 +54,8 @@ std::string loop_fields(const SolverParts& parts) {
          << "    nullptr,  // position_derivative: q' = qd\n"
          << "    nullptr,  // driven_positions: as driven_coordinates\n"
          << "    " << parts.loop_rows << ",\n    " << parts.loop_entries.size() << ",\n"
-         << "    kLoops,\n    loop_constraints,\n    loop_jacobian,\n    loop_gamma,\n";
+         << "    kLoops,\n    loop_constraints,\n    loop_jacobian,\n    loop_gamma,\n"
+         << "    nullptr,  // point_position3: spatial models only\n";
   return fields.str();
 }
 
