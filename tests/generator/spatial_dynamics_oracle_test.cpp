@@ -63,6 +63,7 @@ Oracle oracle(const ir::Model& m, const ir::CoordinateLayout& layout, const Eige
   }
   for (const ir::Load& load : m.loads) {
     const ir::Body& b = m.bodies[load.body];
+    if (!load.window.contains(t)) continue;
     if (load.type == ir::LoadType::kForce) {
       const Eigen::Vector3d f(load.force3[0].evaluate(t), load.force3[1].evaluate(t), load.force3[2].evaluate(t));
       o.Q += test::point_jacobian(m, layout, q, load.body, vec(b.points[load.point].position3)).transpose() * f;
@@ -96,14 +97,15 @@ void check_tree(const ir::Model& m, std::mt19937& rng, int trials) {
   for (int trial = 0; trial < trials; ++trial) {
     Eigen::VectorXd q, v;
     random_state(rng, m, layout, q, v);
-    const Oracle o = oracle(m, layout, q, v, 0.0);
+    const double t = trial % 2 ? 0.7 : 0.3;  // each time-windowed load on in one, off in the other
+    const Oracle o = oracle(m, layout, q, v, t);
     // NaN first: an entry the kernel leaves unwritten fails the comparison.
     RowMajor M = RowMajor::Constant(nv, nv, nan), M_fused = RowMajor::Constant(nv, nv, nan);
     Eigen::VectorXd F(nv), Q(nv), F_fused(nv), Q_fused(nv);
     k.mass_matrix(q.data(), M.data());
     k.inertial_forces(q.data(), v.data(), F.data());
-    k.generalized_forces(q.data(), v.data(), 0.0, Q.data());
-    k.dynamics(q.data(), v.data(), 0.0, M_fused.data(), F_fused.data(), Q_fused.data());
+    k.generalized_forces(q.data(), v.data(), t, Q.data());
+    k.dynamics(q.data(), v.data(), t, M_fused.data(), F_fused.data(), Q_fused.data());
     expect_close(M, o.M, kJacobianTol, "M");
     expect_close(F, o.F, kBiasTol, "F");
     expect_close(Q, o.Q, kJacobianTol, "Q");

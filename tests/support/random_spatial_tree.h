@@ -71,6 +71,9 @@ inline std::string random_spatial_tree_yaml(std::mt19937& rng, int bodies, bool 
       << numbers({u(rng), u(rng), u(rng)}) << "\n    points: {p: " << numbers({u(rng), u(rng), u(rng)}) << "}\n";
   }
   y << "loads:\n";
+  // Loads that vary with time, one switched on at 0.5 s and one off at 0.6 s.
+  y << "  - {type: force, body: b0, point: p, value: [\"0.5*sin(3*t)\", 0, \"t^2\"], start: 0.5}\n";
+  y << "  - {type: torque, body: b" << bodies - 1 << ", value: [1, \"cos(t)\", 0], stop: 0.6}\n";
   for (int i = 0; i < bodies; ++i) {
     y << "  - {type: force, body: b" << i << ", point: p, value: " << numbers({u(rng), u(rng), u(rng)}) << "}\n";
     y << "  - {type: torque, body: b" << i << ", value: " << numbers({u(rng), u(rng), u(rng)}) << "}\n";
