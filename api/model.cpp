@@ -1,8 +1,10 @@
 #include <mutex>
 
 #include "api/mbfe.h"
+
 #include "api/solver_cache.h"
 #include "frontend/parse_model.h"
+#include "ir/coordinate_layout.h"
 #include "runtime/fem/beam_system.h"
 #include "runtime/coupled/contact_constraints.h"
 #include "runtime/multibody/rigid_system.h"
@@ -24,6 +26,13 @@ struct Model::Shared {
 
 Model Model::make(ir::Model model, const mbfe_model_v1* solver, std::string library, bool compiled_now,
                   const LoadOptions& options) {
+  // The runtime takes planar trees; spatial models and closed loops are
+  // generated (mbfe generate) and evaluated (mbfe eval) only, for now.
+  if (model.dimension == 3 || !model.constraints.empty())
+    throw runtime::InvalidInput("model '" + model.name + "' " +
+                                (model.dimension == 3 ? "is spatial (dimension: 3)" : "has closed loops (constraints:)") +
+                                ": mbfe generate writes its solver and mbfe eval evaluates it, but the runtime does "
+                                "not simulate or analyse such models yet");
   auto shared = std::make_shared<Shared>();
   shared->kind = runtime::model_kind(model);
   if (!model.bodies.empty()) {
@@ -32,11 +41,12 @@ Model Model::make(ir::Model model, const mbfe_model_v1* solver, std::string libr
       throw runtime::InvalidInput("the solver of '" + model.name + "' has ABI version " +
                                   std::to_string(solver->abi_version) + ", expected " +
                                   std::to_string(MBFE_MODEL_ABI_VERSION) + " (regenerate it)");
-    if (solver->model_name != model.name || solver->num_coordinates != static_cast<int>(model.bodies.size()))
+    const int positions = ir::coordinate_layout(model).num_positions;
+    if (solver->model_name != model.name || solver->num_coordinates != positions)
       throw runtime::InvalidInput("the solver '" + std::string(solver->model_name) + "' (" +
                                   std::to_string(solver->num_coordinates) +
                                   " coordinates) is not the solver of model '" + model.name + "' (" +
-                                  std::to_string(model.bodies.size()) + " bodies)");
+                                  std::to_string(positions) + " position coordinates)");
     // A model read from a file is paired only with the solver generated from
     // those bytes (an IR built in memory has no file to compare).
     const std::string solver_sha256 = solver->model_sha256 ? solver->model_sha256 : "";

@@ -1,5 +1,6 @@
 #include "api/solver_cache.h"
 
+
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <sys/file.h>
@@ -24,6 +25,7 @@
 #include "frontend/sha256.h"
 #include "generator/emit/generate_solver.h"
 #include "generator_fingerprint.h"
+#include "ir/coordinate_layout.h"
 #include "jit_config.h"
 
 namespace mbfe {
@@ -368,7 +370,7 @@ LoadedSolver load_solver(const ir::Model& model, bool quiet, bool by_sources) {
   want.key = frontend::sha256_hex(key_material);
   want.model = model.name;
   want.model_sha256 = model.source_sha256;
-  want.coordinates = static_cast<int>(model.bodies.size());
+  want.coordinates = ir::coordinate_layout(model).num_positions;
   want.generator = gen::generator_version();
 
   const fs::path cache_path(solver_cache_dir());

@@ -4,28 +4,54 @@
 
 #include <cmath>
 
+#include "ir/coordinate_layout.h"
+
 namespace mbfe::frontend {
+
+namespace {
+
+/// Index of body `body`'s first entry of q, or of v when `velocities`.
+int body_first(const CoordinateLayout& layout, int body, bool velocities) {
+  return velocities ? layout.first_velocity[body] : layout.first_position[body];
+}
+
+}  // namespace
 
 void ModelParser::parse(const YAML::Node& root) {
   const MapView top(file_, root, "", "", SourceLoc{1, 1});
-  top.allow({"model", "description", "gravity", "bodies", "loads", "beams", "contacts", "links", "initial",
-             "simulation"});
+  top.allow({"model", "description", "gravity", "dimension", "bodies", "loads", "beams", "contacts", "links",
+             "constraints", "initial", "simulation"});
   const Field& name = top.require("model");
   model_.name = top.identifier(name, limits_.max_name_length);
   if (const Field* description = top.find("description")) top.text(*description);
-  model_.gravity = top.vec2_or("gravity", {0.0, 0.0});
+  if (const Field* dimension = top.find("dimension")) model_.dimension = top.choice(*dimension, {"2", "3"}) + 2;
+  if (model_.dimension == 3) {
+    refuse_planar_only_sections(top);
+    model_.gravity3 = top.vec3_or("gravity", {0.0, 0.0, 0.0});
+  } else {
+    model_.gravity = top.vec2_or("gravity", {0.0, 0.0});
+  }
   if (const Field* bodies = top.find("bodies")) parse_bodies(top, *bodies);
   if (const Field* beams = top.find("beams")) parse_beams(top, *beams);
   if (model_.bodies.empty() && model_.beams.empty()) {
-    top.fail(name.value_loc, "model " + quoted(model_.name) + " has no bodies and no beams");
+    top.fail(name.value_loc, "model " + quoted(model_.name) + " has no bodies" +
+                                 (model_.dimension == 3 ? "" : " and no beams"));
   }
   if (const Field* loads = top.find("loads")) parse_loads(top, *loads);
   if (const Field* contacts = top.find("contacts")) parse_contacts(top, *contacts);
   if (const Field* links = top.find("links")) parse_links(top, *links);
+  if (const Field* constraints = top.find("constraints")) parse_constraints(top, *constraints);
   check_joined_adjustments(top);
   check_output_columns(top);
-  model_.initial.q.assign(model_.bodies.size(), 0.0);
-  model_.initial.qd.assign(model_.bodies.size(), 0.0);
+  // Missing coordinates are 0; a missing quaternion is the identity (1, 0, 0, 0).
+  const CoordinateLayout layout = coordinate_layout(model_);
+  model_.initial.q.assign(layout.num_positions, 0.0);
+  model_.initial.qd.assign(layout.num_velocities, 0.0);
+  for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
+    const JointType type = model_.bodies[b].joint.type;
+    if (type == JointType::kSpherical) model_.initial.q[layout.first_position[b]] = 1.0;
+    if (type == JointType::kFree) model_.initial.q[layout.first_position[b] + 3] = 1.0;
+  }
   if (const Field* initial = top.find("initial")) parse_initial(top.sub(*initial));
   check_something_moves(top);
   if (const Field* simulation = top.find("simulation")) {
@@ -87,8 +113,8 @@ std::vector<YAML::Node> ModelParser::bounded_list(const MapView& view, const Fie
 void ModelParser::parse_initial(const MapView& view) {
   view.allow({"q", "qd", "static"});
   model_.initial.loc = view.loc();
-  if (const Field* q = view.find("q")) parse_coordinates(view.sub(*q), model_.initial.q);
-  if (const Field* qd = view.find("qd")) parse_coordinates(view.sub(*qd), model_.initial.qd);
+  if (const Field* q = view.find("q")) parse_coordinates(view.sub(*q), model_.initial.q, false);
+  if (const Field* qd = view.find("qd")) parse_coordinates(view.sub(*qd), model_.initial.qd, true);
   if (const Field* s = view.find("static")) {
     model_.initial.static_start = view.boolean(*s);
     model_.initial.loc = s->value_loc;
@@ -120,8 +146,9 @@ void ModelParser::check_something_moves(const MapView& top) const {
                "driven and no beam there is nothing to simulate");
 }
 
-/// `{body_name: value, ...}` into one value per body, model order.
-void ModelParser::parse_coordinates(const MapView& view, std::vector<double>& values) const {
+/// `{body_name: value, ...}` into one value per coordinate, model order.
+void ModelParser::parse_coordinates(const MapView& view, std::vector<double>& values, bool velocities) const {
+  const CoordinateLayout layout = coordinate_layout(model_);
   for (const Field& entry : view.fields()) {
     const int body = body_index(entry.key);
     if (body < 0) {
@@ -137,7 +164,27 @@ void ModelParser::parse_coordinates(const MapView& view, std::vector<double>& va
                               std::to_string(model_.bodies[body].joint.motion_loc.line) +
                               " gives q, q' and q'' at every t); its initial value cannot be set"));
     }
-    values[body] = view.number(entry);
+    const JointType type = model_.bodies[body].joint.type;
+    if (type != JointType::kSpherical && type != JointType::kFree) {
+      values[body_first(layout, body, velocities)] = view.number(entry);
+      continue;
+    }
+    const bool spherical = type == JointType::kSpherical;
+    const char* shape = velocities ? (spherical ? "[wx, wy, wz]" : "[vx, vy, vz, wx, wy, wz]")
+                                   : (spherical ? "[w, x, y, z]" : "[x, y, z, w, qx, qy, qz]");
+    const std::vector<double> given =
+        view.numbers(entry, velocities ? velocity_count(type) : position_count(type), shape);
+    std::copy(given.begin(), given.end(), values.begin() + body_first(layout, body, velocities));
+    if (velocities) continue;
+    // A quaternion is stored unit; any non-zero one names a rotation.
+    double* quaternion = values.data() + body_first(layout, body, false) + (spherical ? 0 : 3);
+    const double norm = std::sqrt(quaternion[0] * quaternion[0] + quaternion[1] * quaternion[1] +
+                                  quaternion[2] * quaternion[2] + quaternion[3] * quaternion[3]);
+    if (!(norm > 0.0) || !std::isfinite(norm)) {
+      view.fail(entry.value_loc, view.prefixed(view.what(entry) + ": the quaternion (w, x, y, z) must be "
+                                                                  "non-zero and finite (it is normalised)"));
+    }
+    for (int k = 0; k < 4; ++k) quaternion[k] /= norm;
   }
 }
 

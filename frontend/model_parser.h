@@ -2,7 +2,8 @@
 // is the entry): a MapView per thing of the model, every value checked and
 // every cross reference resolved. Private to the front end; its methods are
 // spread over the files named for the sections they read (model_parser.cpp,
-// parse_bodies.cpp, parse_beams.cpp, parse_contacts.cpp).
+// parse_bodies.cpp, parse_spatial_bodies.cpp, parse_beams.cpp,
+// parse_contacts.cpp, parse_constraints.cpp).
 #pragma once
 
 #include <yaml-cpp/yaml.h>
@@ -65,6 +66,26 @@ class ModelParser {
 
   std::vector<NamedPoint> parse_points(const MapView& body, const Field& field);
 
+  // ---- spatial bodies (dimension: 3) ------------------------------------
+
+  /// The mass properties, points and joint of a body of a spatial model.
+  void parse_spatial_body(const MapView& view, Body& body);
+
+  Joint parse_spatial_joint(const MapView& view);
+
+  /// Ixx, Iyy, Izz, Ixy, Ixz, Iyz, refused unless a physical inertia tensor.
+  InertiaTensor parse_inertia_tensor(const MapView& view, const Field& field) const;
+
+  /// The names <body>_qw, ... of a spherical or free joint's coordinates
+  /// join the coordinate namespace.
+  void claim_joint_coordinate_names(const MapView& view, const Field& name, const Body& body);
+
+  /// A force or torque load of a spatial model (3-vectors, ground frame).
+  void parse_spatial_load_value(const MapView& view, Load& load);
+
+  /// Beams, contacts and links are planar only: refused at their key.
+  void refuse_planar_only_sections(const MapView& top) const;
+
   // ---- loads on bodies ---------------------------------------------------
 
   void parse_loads(const MapView& top, const Field& field);
@@ -113,12 +134,22 @@ class ModelParser {
 
   void parse_contact_position(const MapView& view, Contact& contact) const;
 
+  // ---- closed loops ------------------------------------------------------
+
+  void parse_constraints(const MapView& top, const Field& field);
+
+  LoopEnd parse_loop_end(const MapView& loop_view, const Field& field) const;
+
+  /// A direction of the model's dimension, normalised; zero refused.
+  Vec3 unit_direction(const MapView& view, const Field& field) const;
+
   // ---- initial state and simulation -------------------------------------
 
   void parse_initial(const MapView& view);
 
-  /// `{body_name: value, ...}` into one value per body, model order.
-  void parse_coordinates(const MapView& view, std::vector<double>& values) const;
+  /// `{body_name: value, ...}` into one value per coordinate, model order:
+  /// `velocities` picks v (else q). A spherical or free joint takes a list.
+  void parse_coordinates(const MapView& view, std::vector<double>& values, bool velocities) const;
 
   void parse_simulation(const MapView& view);
 

@@ -31,6 +31,11 @@ Body ModelParser::parse_body(const MapView& view) {
 
   const Field& parent = view.require("parent");
   body.parent = parent_index(view, parent, body.name);
+  if (model_.dimension == 3) {
+    parse_spatial_body(view, body);
+    claim_joint_coordinate_names(view, name, body);
+    return body;
+  }
   body.joint = parse_joint(view.sub(view.require("joint")));
   body.mass = view.number_at_least(view.require("mass"), 0.0);
   body.inertia = view.number_at_least(view.require("inertia"), 0.0);
@@ -58,9 +63,13 @@ Joint ModelParser::parse_joint(const MapView& view) {
   view.allow({"type", "at", "axis", "motion"});
   Joint joint;
   joint.loc = view.loc();
-  joint.type = view.choice(view.require("type"), {"revolute", "prismatic"}) == 0
-                   ? JointType::kRevolute
-                   : JointType::kPrismatic;
+  const Field& type = view.require("type");
+  if (type.value.IsScalar() && (type.value.Scalar() == "spherical" || type.value.Scalar() == "free")) {
+    view.fail(type.value_loc, view.prefixed("joint.type: a " + type.value.Scalar() +
+                                            " joint exists in spatial models only (add 'dimension: 3' at the "
+                                            "top of the file); a planar joint is revolute or prismatic"));
+  }
+  joint.type = view.choice(type, {"revolute", "prismatic"}) == 0 ? JointType::kRevolute : JointType::kPrismatic;
   joint.at = view.vec2_or("at", {0.0, 0.0});
   if (const Field* motion = view.find("motion")) {
     joint.motion = view.expression(*motion);
@@ -95,7 +104,10 @@ std::vector<NamedPoint> ModelParser::parse_points(const MapView& body, const Fie
     if (!problem.empty()) {
       view.fail(entry.key_loc, view.prefixed("point '" + shown(entry.key) + "' " + problem));
     }
-    points.push_back({entry.key, view.vec2(entry), entry.key_loc});
+    NamedPoint point{entry.key, {0.0, 0.0}, {0.0, 0.0, 0.0}, entry.key_loc};
+    if (model_.dimension == 3) point.position3 = view.vec3(entry);
+    else point.position = view.vec2(entry);
+    points.push_back(point);
   }
   return points;
 }
@@ -119,18 +131,29 @@ Load ModelParser::parse_load(const MapView& view) {
     if (const Field* point = view.find("point")) {
       load.point = existing_point(view, *point, load.body);
     }
-    load.force = view.expression_pair(view.require("value"));
+    if (model_.dimension == 3) parse_spatial_load_value(view, load);
+    else load.force = view.expression_pair(view.require("value"));
     load.window = time_window(view);
   } else if (type == 1) {
     view.allow({"type", "body", "value", "start", "stop"});
     load.type = LoadType::kTorque;
     load.body = existing_body(view, view.require("body"));
-    load.torque = view.expression(view.require("value"));
+    if (model_.dimension == 3) parse_spatial_load_value(view, load);
+    else load.torque = view.expression(view.require("value"));
     load.window = time_window(view);
   } else {
     view.allow({"type", "joint", "stiffness", "damping", "rest", "start", "stop"});
     load.type = LoadType::kSpringDamper;
-    load.body = existing_body(view, view.require("joint"));
+    const Field& joint = view.require("joint");
+    load.body = existing_body(view, joint);
+    const JointType joint_type = model_.bodies[load.body].joint.type;
+    if (joint_type == JointType::kSpherical || joint_type == JointType::kFree) {
+      view.fail(joint.value_loc,
+                view.prefixed("a spring_damper acts on one joint coordinate; body " +
+                              quoted(model_.bodies[load.body].name) + " has a " +
+                              (joint_type == JointType::kSpherical ? "spherical" : "free") +
+                              " joint (expected a revolute or prismatic one)"));
+    }
     load.stiffness = at_least_or(view, "stiffness", 0.0);
     load.damping = at_least_or(view, "damping", 0.0);
     load.rest = view.number_or("rest", 0.0);

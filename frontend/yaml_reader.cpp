@@ -236,20 +236,32 @@ long long MapView::whole_number(const Field& field) const {
   return static_cast<long long>(value);
 }
 
-Vec2 MapView::vec2(const Field& field) const {
+Field MapView::component(const Field& field, std::size_t i) const {
+  Field component{field.key + "[" + std::to_string(i) + "]", field.key_node, field.value[i], field.key_loc,
+                  location_of(field.value[i])};
+  if (component.value_loc.line == 0) component.value_loc = field.value_loc;
+  return component;
+}
+
+std::vector<double> MapView::numbers(const Field& field, std::size_t count, const std::string& shape) const {
   const YAML::Node& value = field.value;
-  if (!value.IsSequence() || value.size() != 2) {
-    fail(field.value_loc,
-         prefixed(what(field) + ": expected a list of 2 numbers [x, y], got " + describe(value)));
+  if (!value.IsSequence() || value.size() != count) {
+    fail(field.value_loc, prefixed(what(field) + ": expected a list of " + std::to_string(count) + " numbers " +
+                                   shape + ", got " + describe(value)));
   }
-  Vec2 result{};
-  for (std::size_t i = 0; i < 2; ++i) {
-    Field component{field.key + "[" + std::to_string(i) + "]", field.key_node, value[i],
-                    field.key_loc, location_of(value[i])};
-    if (component.value_loc.line == 0) component.value_loc = field.value_loc;
-    result[i] = number(component);
-  }
+  std::vector<double> result(count);
+  for (std::size_t i = 0; i < count; ++i) result[i] = number(component(field, i));
   return result;
+}
+
+Vec2 MapView::vec2(const Field& field) const {
+  const std::vector<double> v = numbers(field, 2, "[x, y]");
+  return {v[0], v[1]};
+}
+
+ir::Vec3 MapView::vec3(const Field& field) const {
+  const std::vector<double> v = numbers(field, 3, "[x, y, z]");
+  return {v[0], v[1], v[2]};
 }
 
 bool MapView::boolean(const Field& field) const {
@@ -280,20 +292,26 @@ ir::Expression MapView::expression(const Field& field) const {
   return parse_expression(value.Scalar(), file_, start, prefix);
 }
 
-std::array<ir::Expression, 2> MapView::expression_pair(const Field& field) const {
+std::vector<ir::Expression> MapView::expressions(const Field& field, std::size_t count,
+                                                const std::string& shape) const {
   const YAML::Node& value = field.value;
-  if (!value.IsSequence() || value.size() != 2) {
-    fail(field.value_loc, prefixed(what(field) + ": expected a list of 2 values [x, y], got " +
-                                   describe(value)));
+  if (!value.IsSequence() || value.size() != count) {
+    fail(field.value_loc, prefixed(what(field) + ": expected a list of " + std::to_string(count) + " values " +
+                                   shape + ", got " + describe(value)));
   }
-  std::array<ir::Expression, 2> result;
-  for (std::size_t i = 0; i < 2; ++i) {
-    Field component{field.key + "[" + std::to_string(i) + "]", field.key_node, value[i],
-                    field.key_loc, location_of(value[i])};
-    if (component.value_loc.line == 0) component.value_loc = field.value_loc;
-    result[i] = expression(component);
-  }
+  std::vector<ir::Expression> result;
+  for (std::size_t i = 0; i < count; ++i) result.push_back(expression(component(field, i)));
   return result;
+}
+
+std::array<ir::Expression, 2> MapView::expression_pair(const Field& field) const {
+  std::vector<ir::Expression> e = expressions(field, 2, "[x, y]");
+  return {std::move(e[0]), std::move(e[1])};
+}
+
+std::array<ir::Expression, 3> MapView::expression_triple(const Field& field) const {
+  std::vector<ir::Expression> e = expressions(field, 3, "[x, y, z]");
+  return {std::move(e[0]), std::move(e[1]), std::move(e[2])};
 }
 
 std::string MapView::text(const Field& field) const {
@@ -349,6 +367,11 @@ double MapView::number_or(const std::string& key, double fallback) const {
 Vec2 MapView::vec2_or(const std::string& key, Vec2 fallback) const {
   const Field* field = find(key);
   return field ? vec2(*field) : fallback;
+}
+
+ir::Vec3 MapView::vec3_or(const std::string& key, ir::Vec3 fallback) const {
+  const Field* field = find(key);
+  return field ? vec3(*field) : fallback;
 }
 
 std::string MapView::prefixed(const std::string& message) const {

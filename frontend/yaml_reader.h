@@ -70,6 +70,9 @@ class MapView {
   double positive(const Field& field) const;                         // > 0
   long long whole_number(const Field& field) const;
   ir::Vec2 vec2(const Field& field) const;
+  ir::Vec3 vec3(const Field& field) const;
+  /// A list of exactly `count` numbers; `shape` shows it in messages ("[x, y, z]").
+  std::vector<double> numbers(const Field& field, std::size_t count, const std::string& shape) const;
   std::string text(const Field& field) const;  // any scalar
   /// true / false.
   bool boolean(const Field& field) const;
@@ -78,6 +81,10 @@ class MapView {
   ir::Expression expression(const Field& field) const;
   /// [x, y], each a number or an expression in t.
   std::array<ir::Expression, 2> expression_pair(const Field& field) const;
+  /// [x, y, z], each a number or an expression in t.
+  std::array<ir::Expression, 3> expression_triple(const Field& field) const;
+  /// A list of exactly `count` numbers or expressions in t.
+  std::vector<ir::Expression> expressions(const Field& field, std::size_t count, const std::string& shape) const;
   /// A name that may reach generated C++: identifier, not a keyword, at most
   /// `max_length` characters.
   std::string identifier(const Field& field, std::size_t max_length) const;
@@ -89,6 +96,7 @@ class MapView {
   // Optional fields with defaults.
   double number_or(const std::string& key, double fallback) const;
   ir::Vec2 vec2_or(const std::string& key, ir::Vec2 fallback) const;
+  ir::Vec3 vec3_or(const std::string& key, ir::Vec3 fallback) const;
 
   /// "<context>: <message>", or the message alone at the top level.
   std::string prefixed(const std::string& message) const;
@@ -100,6 +108,9 @@ class MapView {
   [[noreturn]] void fail(ir::SourceLoc loc, const std::string& message) const;
 
  private:
+  /// Item `i` of the list under `field`, as a field named key[i], located.
+  Field component(const Field& field, std::size_t i) const;
+
   std::string file_;
   YAML::Node node_;
   std::string context_;

@@ -4,7 +4,9 @@
 // it. Nothing here knows YAML or GiNaC. Every name stored here has passed the
 // identifier check ([A-Za-z_][A-Za-z0-9_]*), every number is finite, and every
 // cross reference (parent, body of a load, beam of a contact) is resolved to an
-// index. SI units throughout; planar, ground frame (x, y).
+// index. SI units throughout, ground frame: planar (x, y) unless
+// Model::dimension is 3, when the members marked "spatial" hold the model and
+// their planar counterparts stay zero (docs/model-format.md, "Spatial models").
 #pragma once
 
 #include <array>
@@ -18,18 +20,53 @@
 namespace mbfe::ir {
 
 using Vec2 = std::array<double, 2>;
+using Vec3 = std::array<double, 3>;
 
-enum class JointType { kRevolute, kPrismatic };
+/// An inertia tensor about the centre of mass in the body frame, as the six
+/// distinct entries of the symmetric matrix [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz],
+/// [Ixz, Iyz, Izz]] in this order: Ixx, Iyy, Izz, Ixy, Ixz, Iyz (kg m^2;
+/// URDF's ixx, iyy, izz, ixy, ixz, iyz). Validated physical: positive
+/// semidefinite, principal moments satisfying the triangle inequality.
+using InertiaTensor = std::array<double, 6>;
 
-/// A single-DOF joint connecting a body to its parent.
+/// Spherical and free joints exist in spatial models only.
+enum class JointType { kRevolute, kPrismatic, kSpherical, kFree };
+
+/// Position coordinates of a joint: 1, a spherical joint's unit quaternion 4,
+/// a free joint's position and quaternion 7.
+int position_count(JointType type);
+/// Velocity coordinates of a joint: 1, 3 (spherical), 6 (free).
+int velocity_count(JointType type);
+
+/// The joint connecting a body to its parent.
+///
+/// Planar models (dimension 2), one coordinate q:
 /// Revolute: body frame = parent frame translated to `at`, rotated CCW by q.
 /// Prismatic: body frame = parent frame translated to `at + q * axis`, not
 /// rotated (`axis` is stored normalised, in the parent frame).
-/// A driven joint has a `motion`: q = motion(t), no longer an unknown.
+///
+/// Spatial models (dimension 3, docs/model-format.md "Spatial models"): the
+/// joint frame is the parent frame translated to `at3` and turned by the
+/// fixed `rotation` (roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll)).
+/// Revolute: body frame = joint frame rotated by q about `axis3` (unit, in
+/// the joint frame, right-hand rule). Prismatic: body frame = parent frame
+/// translated to `at3 + q * axis3` (unit, in the parent frame) and turned by
+/// `rotation`. Spherical: joint frame turned by a unit quaternion (4
+/// coordinates, 3 velocities: the angular velocity relative to the joint
+/// frame, in the body frame). Free: joint frame translated by (x, y, z) in
+/// the joint frame, then turned by a unit quaternion (7 coordinates; 6
+/// velocities: the rates of x, y, z, then the relative angular velocity in
+/// the body frame).
+///
+/// A driven joint (revolute or prismatic) has a `motion`: q = motion(t), no
+/// longer an unknown.
 struct Joint {
   JointType type = JointType::kRevolute;
   Vec2 at{0.0, 0.0};    // m, parent frame
   Vec2 axis{1.0, 0.0};  // unit vector, parent frame (prismatic only)
+  Vec3 at3{0.0, 0.0, 0.0};        // spatial: m, parent frame
+  Vec3 axis3{0.0, 0.0, 1.0};      // spatial: unit vector (revolute: joint frame; prismatic: parent frame)
+  Vec3 rotation{0.0, 0.0, 0.0};   // spatial: rad, roll, pitch, yaw of the joint frame
   std::optional<Expression> motion;  // m or rad as a function of t
   SourceLoc loc;
   SourceLoc motion_loc;
@@ -38,10 +75,12 @@ struct Joint {
 struct NamedPoint {
   std::string name;
   Vec2 position{0.0, 0.0};  // m, body frame
+  Vec3 position3{0.0, 0.0, 0.0};  // spatial: m, body frame
   SourceLoc loc;
 };
 
-/// A rigid body; owns generalized coordinate number `index` (file order).
+/// A rigid body; owns the generalized coordinates of its joint (file order:
+/// a planar model has one per body, see ir/coordinate_layout.h).
 struct Body {
   std::string name;
   int parent = -1;     // index into Model::bodies; -1 = ground
@@ -49,6 +88,8 @@ struct Body {
   double mass = 0.0;     // kg, >= 0 (0 = fictitious, massless body)
   double inertia = 0.0;  // kg m^2 about the centre of mass, >= 0
   Vec2 com{0.0, 0.0};    // m, body frame
+  InertiaTensor inertia3{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // spatial: about the centre of mass, body frame
+  Vec3 com3{0.0, 0.0, 0.0};                              // spatial: m, body frame
   std::vector<NamedPoint> points;
   SourceLoc loc;
 };
@@ -57,15 +98,17 @@ enum class LoadType { kForce, kTorque, kSpringDamper };
 
 /// A load on the rigid part, zero outside `window`. Force: ground-frame force
 /// at a named point (or at the body-frame origin when no point is given).
-/// Torque: on the body. Both are expressions in t.
-/// SpringDamper: Q_i += -stiffness (q_i - rest) - damping qd_i on the body's
-/// own joint coordinate.
+/// Torque: on the body (spatial: a ground-frame vector). Both are expressions
+/// in t. SpringDamper: Q_i += -stiffness (q_i - rest) - damping qd_i on the
+/// body's own joint coordinate (a revolute or prismatic joint).
 struct Load {
   LoadType type = LoadType::kForce;
   int body = -1;        // index into Model::bodies
   int point = -1;       // index into Body::points; -1 = body-frame origin
   std::array<Expression, 2> force;  // N, ground frame
   Expression torque;    // N m
+  std::array<Expression, 3> force3;   // spatial: N, ground frame
+  std::array<Expression, 3> torque3;  // spatial: N m, ground frame
   TimeWindow window;
   double stiffness = 0.0;  // N/m or N m/rad
   double damping = 0.0;    // N s/m or N m s/rad
@@ -209,9 +252,39 @@ struct Link {
   SourceLoc loc;
 };
 
+/// A closed kinematic loop: a constraint between two bodies of the tree
+/// (docs/model-format.md, "Closed loops"). With R_a, R_b the body frames
+/// and p_a, p_b the two points in the ground frame:
+///   point:     p_a = p_b (3 rows in space, 2 in the plane);
+///   revolute:  p_a = p_b and b turns relative to a about `axis` only: the
+///              axis, fixed in a, keeps the same components in b's frame
+///              (space: 5 rows; plane: 2, the axis is z);
+///   prismatic: b keeps a's orientation and p_b stays on the line through
+///              p_a along `axis` fixed in a (space: 5 rows; plane: 2).
+enum class LoopType { kPoint, kRevolute, kPrismatic };
+
+/// One end of a loop: a point of a body, or of the ground.
+struct LoopEnd {
+  int body = -1;   // index into Model::bodies; -1 = the ground
+  int point = -1;  // index into Body::points; -1 when given by coordinates
+  Vec3 at{0.0, 0.0, 0.0};  // m, the point in the body frame (the ground's for the ground); z = 0 in the plane
+};
+
+struct LoopConstraint {
+  std::string name;
+  LoopType type = LoopType::kPoint;
+  LoopEnd a, b;
+  Vec3 axis{0.0, 0.0, 1.0};  // unit vector in a's frame (revolute in space, prismatic); z = 0 in the plane
+  SourceLoc loc;
+};
+
+/// Constraint rows of a loop of `type` in a model of `dimension` (2 or 3).
+int loop_rows(LoopType type, int dimension);
+
 struct Initial {
-  std::vector<double> q;   // one per body, model order (missing = 0)
-  std::vector<double> qd;  // one per body
+  std::vector<double> q;   // one per position coordinate, model order (planar: one per body; missing = 0,
+                           // a quaternion's missing = identity)
+  std::vector<double> qd;  // one per velocity coordinate (planar: one per body)
   bool static_start = false;  // `static: true`: static equilibrium at t = 0
   SourceLoc loc;
 };
@@ -227,12 +300,15 @@ struct Model {
   std::string name;          // identifier
   std::string source_path;   // as given on the command line
   std::string source_sha256; // hex digest of the file's bytes
+  int dimension = 2;         // 2: planar; 3: spatial (no beams, contacts or links)
   Vec2 gravity{0.0, 0.0};    // m/s^2, ground frame
+  Vec3 gravity3{0.0, 0.0, 0.0};  // spatial: m/s^2, ground frame
   std::vector<Body> bodies;
   std::vector<Load> loads;
   std::vector<Beam> beams;
   std::vector<Contact> contacts;
   std::vector<Link> links;
+  std::vector<LoopConstraint> constraints;  // closed loops
   Initial initial;
   Simulation simulation;
 };

@@ -15,6 +15,7 @@ PACKAGES=(
   python3-dev pybind11-dev python3-numpy      # the Python module (docs/python.md)
   python3-matplotlib                          # its example's picture (examples/python/)
   python3-vtk9 xvfb xauth                     # reading and rendering the animation in tests (docs/animation.md)
+  python3-sympy                               # the SymPy oracle of the spatial kernels (tests/generator/)
 )
 # Optional extras, heavy or only for some jobs:
 if [[ "${MBFE_WITH_SUNDIALS:-0}" == 1 ]]; then

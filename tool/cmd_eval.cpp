@@ -1,10 +1,14 @@
 // mbfe eval MODEL.yaml --q ... --qd ... [--t T] --json
 #include <Eigen/Core>
 #include <iostream>
+#include <tuple>
 #include <nlohmann/json.hpp>
 #include <vector>
 
 #include "api/mbfe.h"
+#include "api/solver_cache.h"
+#include "frontend/parse_model.h"
+#include "ir/coordinate_layout.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "tool/json_text.h"
@@ -31,10 +35,88 @@ slider_pin; a slider_spring is a force, not a constraint, and has no row):
 Phi (m), J_b = dPhi/dq_b, J_c = dPhi/dq_c over all beam coordinates and
 gamma = -(dJ/dt) q' of J_b q_b'' + J_c q_c'' = gamma.
 
+A spatial model (dimension: 3) takes --q with its nq position coordinates
+(a quaternion as w, x, y, z; missing --q: zeros and identity quaternions)
+and --qd with its nv velocity coordinates; M is nv x nv. A model with closed
+loops (`constraints:`, planar or spatial) adds
+  "loops": {"Phi": [...], "J": [[...]], "gamma": [...]}
+with Phi' = J qd and J qd' = gamma (docs/model-format.md, "Closed loops").
+
 Examples:
   mbfe eval models/double_pendulum.yaml --q 0.3,-0.2 --qd 1,0 --json
   mbfe eval models/double_pendulum_beam.yaml --q -1.38,-0.93 --qd 0.1,0 --json
 )";
+
+nlohmann::json rows_of(const Eigen::MatrixXd& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    std::vector<double> row(m.cols());
+    for (Eigen::Index c = 0; c < m.cols(); ++c) row[c] = m(r, c);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::vector<double> list_of(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+/// A spatial model or one with closed loops, which the runtime does not take
+/// yet: its generated kernels called directly.
+int eval_generated_kernels(const ir::Model& model, const ParsedArgs& parsed) {
+  const ir::CoordinateLayout layout = ir::coordinate_layout(model);
+  const int nq = layout.num_positions, nv = layout.num_velocities;
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(nq), v = Eigen::VectorXd::Zero(nv);
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {  // identity quaternions
+    const ir::JointType type = model.bodies[b].joint.type;
+    if (type == ir::JointType::kSpherical) q[layout.first_position[b]] = 1.0;
+    if (type == ir::JointType::kFree) q[layout.first_position[b] + 3] = 1.0;
+  }
+  for (auto [flag, values, n] : {std::tuple<const char*, Eigen::VectorXd*, int>{"q", &q, nq}, {"qd", &v, nv}}) {
+    const std::vector<double> given = parsed.numbers(flag).value_or(std::vector<double>{});
+    if (given.empty()) continue;
+    if (static_cast<int>(given.size()) != n)
+      throw UsageError(std::string("--") + flag + " has " + std::to_string(given.size()) + " entries, expected " +
+                       std::to_string(n) + (flag == std::string("q") ? " (position" : " (velocity") +
+                       " coordinates in model order)");
+    *values = Eigen::Map<const Eigen::VectorXd>(given.data(), n);
+  }
+  const double t = parsed.number("t").value_or(0.0);
+  const mbfe_model_v1& k = *load_solver(model, /*quiet=*/true).model;
+  if (k.num_driven > 0) {  // the motion's q and q' at t, whatever the flags say
+    std::vector<double> dq(k.num_driven), dqd(k.num_driven), dqdd(k.num_driven);
+    k.motion(t, dq.data(), dqd.data(), dqdd.data());
+    for (int d = 0; d < k.num_driven; ++d) {
+      q[k.driven_positions ? k.driven_positions[d] : k.driven_coordinates[d]] = dq[d];
+      v[k.driven_coordinates[d]] = dqd[d];
+    }
+  }
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> M(nv, nv);
+  Eigen::VectorXd F(nv), Q(nv);
+  k.dynamics(q.data(), v.data(), t, M.data(), F.data(), Q.data());
+  nlohmann::json out;
+  out["M"] = rows_of(M);
+  out["F"] = list_of(F);
+  out["Q"] = list_of(Q);
+  if (k.num_loop_rows > 0) {
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(k.num_loop_rows, nv);
+    Eigen::VectorXd phi(k.num_loop_rows), gamma(k.num_loop_rows);
+    k.loop_constraints(q.data(), phi.data());
+    k.loop_jacobian(q.data(), J.data());
+    k.loop_gamma(q.data(), v.data(), gamma.data());
+    out["loops"] = {{"Phi", list_of(phi)}, {"J", rows_of(J)}, {"gamma", list_of(gamma)}};
+  }
+  if (parsed.has("json")) {
+    std::cout << out.dump() << "\n";
+    return 0;
+  }
+  std::cout << "position coordinates:";
+  for (const std::string& name : layout.position_names) std::cout << " " << name;
+  std::cout << "\nvelocity coordinates:";
+  for (const std::string& name : layout.velocity_names) std::cout << " " << name;
+  std::cout << "\nM = " << out["M"].dump() << "\nF = " << out["F"].dump() << "\nQ = " << out["Q"].dump() << "\n";
+  if (out.contains("loops"))
+    for (const char* key : {"Phi", "J", "gamma"}) std::cout << key << " = " << out["loops"][key].dump() << "\n";
+  return 0;
+}
 
 }  // namespace
 
@@ -45,6 +127,10 @@ int cmd_eval(const Args& args) {
     return 0;
   }
   if (parsed.positional().size() != 1) throw UsageError("expected one model file (see --help)");
+  {
+    const ir::Model ir = frontend::load_model_file(parsed.positional()[0]);
+    if (ir.dimension == 3 || !ir.constraints.empty()) return eval_generated_kernels(ir, parsed);
+  }
   LoadOptions load;
   load.quiet = parsed.has("quiet") || parsed.has("json");
   const Model model = Model::load(parsed.positional()[0], load);
@@ -67,16 +153,6 @@ int cmd_eval(const Args& args) {
     return 3;
   }
 
-  auto rows_of = [](const Eigen::MatrixXd& m) {
-    nlohmann::json rows = nlohmann::json::array();
-    for (Eigen::Index r = 0; r < m.rows(); ++r) {
-      std::vector<double> row(m.cols());
-      for (Eigen::Index c = 0; c < m.cols(); ++c) row[c] = m(r, c);
-      rows.push_back(row);
-    }
-    return rows;
-  };
-  auto list_of = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
   nlohmann::json out;
   out["M"] = rows_of(e.M);
   out["F"] = list_of(e.F);

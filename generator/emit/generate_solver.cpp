@@ -6,13 +6,16 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "generator/emit/generate_spatial_solver.h"
 #include "generator/emit/kernel_emitter.h"
 #include "generator/emit/solver_files.h"
 #include "generator/symbolic/contact_kinematics.h"
 #include "generator/symbolic/cse.h"
+#include "generator/symbolic/driven_motion.h"
+#include "generator/symbolic/loop_constraints.h"
+#include "generator/symbolic/loop_kinematics.h"
 #include "generator/symbolic/rigid_dynamics.h"
 #include "generator/symbolic/rigid_jacobians.h"
-#include "generator/symbolic/time_functions.h"
 #include "ir/model_error.h"
 
 namespace mbfe::gen {
@@ -41,7 +44,7 @@ GeneratedSolver generate_solver(const ir::Model& model) {
   if (model.bodies.empty())
     throw std::invalid_argument("model '" + model.name + "' has no bodies: nothing to generate");
   try {
-    return generate_solver_unchecked(model);
+    return model.dimension == 3 ? generate_spatial_solver(model) : generate_solver_unchecked(model);
   } catch (const std::overflow_error& e) {
     // Every number of the file is finite, but products of huge ones (mass
     // 1e300 at com 1e300) overflow a double: bad input, reported as such
@@ -142,25 +145,30 @@ GeneratedSolver generate_solver_unchecked(const ir::Model& model) {
   }
 
   // Driven joints: q, q' and q'' of each motion, derived here in closed form.
-  Kernel motion{"motion", "double t, double* q, double* qd, double* qdd",
-                "Driven joints, in the order of kDrivenCoordinates: q(t), q'(t), q''(t).", {}, {}};
-  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
-    const auto& m = model.bodies[i].joint.motion;
-    if (!m) continue;
-    const std::string k = std::to_string(parts.driven.size());
-    const GiNaC::ex f = to_ginac(*m, d.t);
-    const GiNaC::ex df = f.diff(d.t);
-    motion.outputs.push_back({"q[" + k + "]", d.code.define(f)});
-    motion.outputs.push_back({"qd[" + k + "]", d.code.define(df)});
-    motion.outputs.push_back({"qdd[" + k + "]", d.code.define(df.diff(d.t))});
-    parts.driven.push_back(static_cast<int>(i));
-  }
+  Kernel motion = derive_motion_kernel(model, d.t, d.code, parts.driven);
   if (!parts.driven.empty()) {
-    motion.statements = d.code.closure(motion.outputs);
     eliminate_common_subexpressions(motion);
     const EmittedKernel e = emit_kernel(motion, inputs, params, "static ");
     solver.operations.push_back({motion.name, e.emitted, e.executed});
     parts.motion = "\n" + e.text;
+  }
+
+  // Closed loops (after every other kernel: their intermediates do not
+  // change the numbering of the others).
+  if (!model.constraints.empty()) {
+    const LoopKinematics loop_kinematics = planar_loop_kinematics(model, d.kinematics, d.qd, d.code);
+    LoopKernels loops = derive_loop_constraints(model, loop_kinematics, "qd", d.code);
+    std::ostringstream text;
+    for (Kernel* k : {&loops.constraints, &loops.jacobian, &loops.gamma}) {
+      eliminate_common_subexpressions(*k);
+      const EmittedKernel e = emit_kernel(*k, inputs, params, "static ");
+      solver.operations.push_back({k->name, e.emitted, e.executed});
+      text << "\n" << e.text;
+    }
+    parts.loops = text.str();
+    for (const LoopKernels::Entry& entry : loops.entries)
+      parts.loop_entries.push_back({entry.name, entry.type, entry.first_row, entry.rows});
+    parts.loop_rows = loops.rows;
   }
 
   std::ostringstream points;

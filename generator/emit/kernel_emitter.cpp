@@ -26,7 +26,7 @@ namespace {
 // emitted code stays O(N) while M has N(N+1)/2 entries.
 std::string emit_assembly(const AncestorPairAssembly& a) {
   std::ostringstream out;
-  const std::string n = "kNumCoordinates";
+  const std::string& n = a.size_name;
   out << "  // Composite-rigid-body algorithm (CRBA), assembly: " << a.target << "_jk = " << a.target
       << "_kj = S_j . U_k for every j on the\n"
       << "  // path from k to the ground. A loop, not one statement per entry, keeps the code O(N); "
@@ -99,8 +99,8 @@ EmittedKernel emit_kernel(const Kernel& kernel, const SymbolNames& inputs, const
   }
   if (kernel.assembly) {
     const AncestorPairAssembly& a = *kernel.assembly;
-    text << "  double " << a.left << "[kNumCoordinates][" << a.width << "];  // " << a.left_doc << "\n"
-         << "  double " << a.right << "[kNumCoordinates][" << a.width << "];  // " << a.right_doc << "\n";
+    text << "  double " << a.left << "[" << a.size_name << "][" << a.width << "];  // " << a.left_doc << "\n"
+         << "  double " << a.right << "[" << a.size_name << "][" << a.width << "];  // " << a.right_doc << "\n";
   }
   text << body.str();
   if (kernel.assembly) text << emit_assembly(*kernel.assembly);

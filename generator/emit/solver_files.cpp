@@ -23,12 +23,43 @@ std::string banner(const ir::Model& model, const std::string& file, const Genera
     b << " total " << count(solver.total_emitted(), solver.total_executed()) << "; fused dynamics "
       << count(solver.fused.emitted, solver.fused.executed) << ".\n";
     if (solver.assembly_pairs > 0)
-      b << "// M is assembled by a loop with one pass per (ancestor, descendant) pair of bodies: "
+      b << "// M is assembled by a loop with one pass per (ancestor, descendant) pair of "
+        << (model.dimension == 3 ? "velocity coordinates: " : "bodies: ")
         << count_of(solver.assembly_pairs, "pass", "passes") << ", " << solver.assembly_operations_per_pass
         << " operations each.\n";
   }
   return b.str();
 }
+
+std::string loop_table(const std::vector<LoopTableEntry>& loops) {
+  if (loops.empty()) return "";
+  std::ostringstream table;
+  table << "const mbfe_loop_constraint_v1 kLoops[] = {\n";
+  for (const LoopTableEntry& loop : loops)
+    table << "    {\"" << loop.name << "\", " << loop.type << ", " << loop.first_row << ", " << loop.rows << "},\n";
+  table << "};\n\n";
+  return table.str();
+}
+
+namespace {
+
+/// The fields a planar model with loops fills after dynamics_jacobians (ABI
+/// version 4); none for a model without loops, whose source stays as it was.
+std::string loop_fields(const SolverParts& parts) {
+  if (parts.loop_entries.empty()) return "";
+  std::ostringstream fields;
+  fields << "    2,  // dimension\n"
+         << "    0,  // num_velocities: nq\n"
+         << "    nullptr,  // velocity_names: the coordinate names\n"
+         << "    nullptr,  // position_derivative: q' = qd\n"
+         << "    nullptr,  // driven_positions: as driven_coordinates\n"
+         << "    " << parts.loop_rows << ",\n    " << parts.loop_entries.size() << ",\n"
+         << "    kLoops,\n    loop_constraints,\n    loop_jacobian,\n    loop_gamma,\n"
+         << "    nullptr,  // point_position3: spatial models only\n";
+  return fields.str();
+}
+
+}  // namespace
 
 std::string solver_header(const ir::Model& model, const GeneratedSolver& solver) {
   const std::string& name = model.name;
@@ -65,7 +96,7 @@ std::string solver_source(const ir::Model& model, const GeneratedSolver& solver,
     for (std::size_t i = 0; i < parent.size(); ++i) source << (i ? ", " : "") << parent[i];
     source << "};\n";
   }
-  source << parts.kernels << parts.jacobians << parts.points << parts.contacts << parts.motion
+  source << parts.kernels << parts.jacobians << parts.points << parts.contacts << parts.motion << parts.loops
          << "\n// Ground-frame position of point `point` of body `body` (indices in model order).\n"
          << "void point_position(const double* q, int body, int point, double* xy) {\n";
   for (const SolverParts::PointFunction& pf : parts.point_functions)
@@ -86,6 +117,7 @@ std::string solver_source(const ir::Model& model, const GeneratedSolver& solver,
              << "},\n";
     source << "};\n\n";
   }
+  source << loop_table(parts.loop_entries);
   if (!parts.driven.empty()) {
     source << "const int kDrivenCoordinates[] = {";
     for (std::size_t i = 0; i < parts.driven.size(); ++i) source << (i ? ", " : "") << parts.driven[i];
@@ -100,7 +132,8 @@ std::string solver_source(const ir::Model& model, const GeneratedSolver& solver,
          << "    generalized_forces,\n    point_position,\n    " << contacts.size() << ",\n    "
          << (contacts.empty() ? "nullptr" : "kContacts") << ",\n    dynamics,\n    " << parts.driven.size()
          << ",\n    " << (parts.driven.empty() ? "nullptr,\n    nullptr" : "kDrivenCoordinates,\n    motion")
-         << ",\n    " << (parts.jacobians.empty() ? "nullptr" : "dynamics_jacobians") << ",\n};\n\n"
+         << ",\n    " << (parts.jacobians.empty() ? "nullptr" : "dynamics_jacobians") << ",\n"
+         << loop_fields(parts) << "};\n\n"
          << "}  // namespace\n}  // namespace " << name << "\n}  // namespace mbfe_generated\n\n"
          << "extern \"C\" const mbfe_model_v1* " << entry << "(void) { return &" << ns << "::kModel; }\n\n"
          << "#ifdef MBFE_SHARED_ENTRY  // defined when compiled into a run-time loaded library\n"

@@ -34,6 +34,7 @@ struct KernelOutput {
 /// N(N+1)/2 entries of a chain's M from growing quadratically.
 struct AncestorPairAssembly {
   std::string target;       // row-major n x n output, e.g. "M"
+  std::string size_name = "kNumCoordinates";  // the emitted constant that is n
   std::string left, right;  // local arrays, e.g. "motion_subspace", "composite_momentum"
   std::string left_doc, right_doc;  // what a row of each holds (a comment in the emitted code)
   int width = 0;                    // components per row

@@ -28,7 +28,8 @@ void derive_rigid_dynamics(const ir::Model& model, RigidDerivation& d) {
   // Forward pass (eqs (2)-(4)), the backward Newton-Euler pass (eq (5)) and
   // the composite bodies, in this order: the order intermediates are defined
   // in is the order of the emitted temporaries.
-  const std::vector<BodyKinematics> kin = forward_kinematics(model, d.q, d.qd, code);
+  d.kinematics = forward_kinematics(model, d.q, d.qd, code);
+  const std::vector<BodyKinematics>& kin = d.kinematics;
   for (int i = 0; i < n; ++i) {
     d.origin.push_back(kin[i].origin);
     d.cos_angle.push_back(kin[i].cos_angle);

@@ -23,6 +23,7 @@
 #include "ir/model.h"
 #include "generator/symbolic/code_list.h"
 #include "generator/symbolic/planar_vectors.h"
+#include "generator/symbolic/rigid_kinematics.h"
 
 namespace mbfe::gen {
 
@@ -34,6 +35,8 @@ struct RigidDerivation {
   /// Per body: frame origin, absolute angle's cosine and sine (ground frame).
   std::vector<Vec2x> origin;
   std::vector<GiNaC::ex> cos_angle, sin_angle;
+  /// Everything the forward pass knows (for the loop kernels).
+  std::vector<BodyKinematics> kinematics;
   Kernel mass_matrix, inertial_forces, generalized_forces;
   Kernel dynamics;  // all three at once, kinematics shared
   /// One kernel per named point: body b, point p -> ground-frame position.

@@ -45,6 +45,8 @@
 //   output_name_rate_clash (bodies a and a_dot), output_name_drive_clash,
 //   output_name_beam_coordinate (a body deck_w3 beside beam deck),
 //   output_name_contact_force, output_name_pin_multiplier, output_name_link_tension
+// - spatial models and closed loops: spatial_zero_axis, spatial_inertia_triangle,
+//   spatial_with_beam, constraint_same_body
 // - binary garbage and non-text: garbage.bin (written by make_garbage.py), nul_byte,
 //   invalid_utf8, control_character
 // A truly empty (0-byte) file cannot carry the header; parse_model_test covers it.

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "generator/emit/generate_solver.h"
+#include "ir/coordinate_layout.h"
 #include "ir/model.h"
 #include "frontend/parse_model.h"
 #include "ir/identifiers.h"
@@ -40,6 +41,7 @@ inline void require(bool ok, const std::string& what) {
 }
 
 inline bool finite2(const ir::Vec2& v) { return std::isfinite(v[0]) && std::isfinite(v[1]); }
+inline bool finite3(const ir::Vec3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
 /// Every number written in the expression is finite (its value at some t may not be).
 inline bool finite_numbers(const ir::Expression& e) {
@@ -52,7 +54,8 @@ inline bool finite_numbers(const ir::Expression& e) {
 inline void check_invariants(const ir::Model& m) {
   using ir::is_identifier;
   require(is_identifier(m.name), "model name '" + m.name + "' is not an identifier");
-  require(finite2(m.gravity), "gravity not finite");
+  require(finite2(m.gravity) && finite3(m.gravity3), "gravity not finite");
+  require(m.dimension == 2 || m.dimension == 3, "dimension");
   const int nb = static_cast<int>(m.bodies.size());
   for (int i = 0; i < nb; ++i) {
     const ir::Body& b = m.bodies[i];
@@ -61,9 +64,14 @@ inline void check_invariants(const ir::Model& m) {
     require(std::isfinite(b.mass) && b.mass >= 0, "body '" + b.name + "': mass");
     require(std::isfinite(b.inertia) && b.inertia >= 0, "body '" + b.name + "': inertia");
     require(finite2(b.com) && finite2(b.joint.at) && finite2(b.joint.axis), "body '" + b.name + "': vector");
+    require(finite3(b.com3) && finite3(b.joint.at3) && finite3(b.joint.axis3) && finite3(b.joint.rotation),
+            "body '" + b.name + "': spatial vector");
+    for (double x : b.inertia3) require(std::isfinite(x), "body '" + b.name + "': inertia tensor");
+    require(m.dimension == 3 || (b.joint.type != ir::JointType::kSpherical && b.joint.type != ir::JointType::kFree),
+            "body '" + b.name + "': a quaternion joint in a planar model");
     for (const auto& p : b.points) {
       require(is_identifier(p.name), "point name '" + p.name + "' is not an identifier");
-      require(finite2(p.position), "point '" + p.name + "' not finite");
+      require(finite2(p.position) && finite3(p.position3), "point '" + p.name + "' not finite");
     }
   }
   for (const ir::Load& l : m.loads) {
@@ -71,6 +79,8 @@ inline void check_invariants(const ir::Model& m) {
     require(l.point >= -1 && l.point < static_cast<int>(m.bodies[l.body].points.size()),
             "load point index out of range");
     require(finite_numbers(l.force[0]) && finite_numbers(l.force[1]) && finite_numbers(l.torque) &&
+                finite_numbers(l.force3[0]) && finite_numbers(l.force3[1]) && finite_numbers(l.force3[2]) &&
+                finite_numbers(l.torque3[0]) && finite_numbers(l.torque3[1]) && finite_numbers(l.torque3[2]) &&
                 std::isfinite(l.stiffness) &&
                 std::isfinite(l.damping) && std::isfinite(l.rest),
             "load value not finite");
@@ -97,10 +107,22 @@ inline void check_invariants(const ir::Model& m) {
             "contact point index out of range");
     require(c.beam >= 0 && c.beam < nbeams, "contact beam index out of range");
   }
-  require(m.initial.q.size() == m.bodies.size() && m.initial.qd.size() == m.bodies.size(),
+  for (const ir::LoopConstraint& c : m.constraints) {
+    require(is_identifier(c.name), "constraint name '" + c.name + "' is not an identifier");
+    for (const ir::LoopEnd* end : {&c.a, &c.b}) {
+      require(end->body >= -1 && end->body < nb, "constraint body index out of range");
+      require(end->point == -1 || (end->body >= 0 && end->point < static_cast<int>(m.bodies[end->body].points.size())),
+              "constraint point index out of range");
+      require(finite3(end->at), "constraint point not finite");
+    }
+    require(c.a.body != c.b.body && finite3(c.axis), "constraint '" + c.name + "'");
+  }
+  const ir::CoordinateLayout layout = ir::coordinate_layout(m);
+  require(static_cast<int>(m.initial.q.size()) == layout.num_positions &&
+              static_cast<int>(m.initial.qd.size()) == layout.num_velocities,
           "initial state size");
-  for (std::size_t i = 0; i < m.bodies.size(); ++i)
-    require(std::isfinite(m.initial.q[i]) && std::isfinite(m.initial.qd[i]), "initial state not finite");
+  for (double x : m.initial.q) require(std::isfinite(x), "initial state not finite");
+  for (double x : m.initial.qd) require(std::isfinite(x), "initial state not finite");
   require(std::isfinite(m.simulation.step) && m.simulation.step > 0, "simulation step");
   require(std::isfinite(m.simulation.t_end) && m.simulation.t_end > 0, "simulation t_end");
 }

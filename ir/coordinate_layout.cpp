@@ -1,0 +1,45 @@
+#include "ir/coordinate_layout.h"
+
+namespace mbfe::ir {
+
+std::vector<std::string> position_names(JointType type, const std::string& body) {
+  switch (type) {
+    case JointType::kSpherical:
+      return {body + "_qw", body + "_qx", body + "_qy", body + "_qz"};
+    case JointType::kFree:
+      return {body + "_x", body + "_y", body + "_z", body + "_qw", body + "_qx", body + "_qy", body + "_qz"};
+    default:
+      return {body};
+  }
+}
+
+std::vector<std::string> velocity_names(JointType type, const std::string& body) {
+  switch (type) {
+    case JointType::kSpherical:
+      return {body + "_wx", body + "_wy", body + "_wz"};
+    case JointType::kFree:
+      return {body + "_vx", body + "_vy", body + "_vz", body + "_wx", body + "_wy", body + "_wz"};
+    default:
+      return {body};
+  }
+}
+
+CoordinateLayout coordinate_layout(const Model& model) {
+  CoordinateLayout layout;
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const Body& body = model.bodies[b];
+    layout.first_position.push_back(layout.num_positions);
+    layout.first_velocity.push_back(layout.num_velocities);
+    layout.num_positions += position_count(body.joint.type);
+    layout.num_velocities += velocity_count(body.joint.type);
+    for (std::string& name : position_names(body.joint.type, body.name))
+      layout.position_names.push_back(std::move(name));
+    for (std::string& name : velocity_names(body.joint.type, body.name)) {
+      layout.velocity_names.push_back(std::move(name));
+      layout.velocity_body.push_back(static_cast<int>(b));
+    }
+  }
+  return layout;
+}
+
+}  // namespace mbfe::ir

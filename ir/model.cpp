@@ -1,0 +1,26 @@
+#include "ir/model.h"
+
+namespace mbfe::ir {
+
+int position_count(JointType type) {
+  switch (type) {
+    case JointType::kSpherical: return 4;
+    case JointType::kFree: return 7;
+    default: return 1;
+  }
+}
+
+int velocity_count(JointType type) {
+  switch (type) {
+    case JointType::kSpherical: return 3;
+    case JointType::kFree: return 6;
+    default: return 1;
+  }
+}
+
+int loop_rows(LoopType type, int dimension) {
+  if (dimension != 3) return 2;  // the plane: a point, or a slide and an angle
+  return type == LoopType::kPoint ? 3 : 5;
+}
+
+}  // namespace mbfe::ir
