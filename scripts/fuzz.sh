@@ -30,7 +30,8 @@ flags=(-std=c++17 -O1 -g -fno-omit-frame-pointer
        -DMBFE_GENERATOR_VERSION="\"${version}\"" -I.)
 read -r -a ginac_cflags <<<"$(pkg-config --cflags ginac)"
 read -r -a ginac_libs <<<"$(pkg-config --libs ginac)"
-flags+=("${ginac_cflags[@]}")
+read -r -a eigen_cflags <<<"$(pkg-config --cflags eigen3)"
+flags+=("${ginac_cflags[@]}" "${eigen_cflags[@]}")
 
 sources=(ir/*.cpp frontend/*.cpp generator/symbolic/*.cpp generator/emit/*.cpp tests/fuzz/model_fuzz.cpp)
 mkdir -p "$build_dir/obj" "$build_dir/corpus" "$build_dir/artifacts"
