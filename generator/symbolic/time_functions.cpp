@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "generator/symbolic/code_list.h"
 
@@ -64,31 +66,52 @@ REGISTER_FUNCTION(mbfe_fabs, eval_func(fabs_eval).derivative_func(fabs_deriv))
 REGISTER_FUNCTION(mbfe_fmin, eval_func(fmin_eval).derivative_func(fmin_deriv))
 REGISTER_FUNCTION(mbfe_fmax, eval_func(fmax_eval).derivative_func(fmax_deriv))
 
-ex to_ginac(const ir::Expression& e, const GiNaC::symbol& t) {
-  using Kind = ir::Expression::Kind;
-  switch (e.kind) {
-    case Kind::kNumber: return exact(e.value);
+namespace {
+
+/// Node `n` of arguments `a` as a GiNaC expression (GiNaC evaluates it at once,
+/// so 1/(t - t) throws here).
+ex convert(const ir::ExpressionNode& n, const ex* a, const GiNaC::symbol& t) {
+  using Kind = ir::ExpressionNode::Kind;
+  switch (n.kind) {
+    case Kind::kNumber: return exact(n.value);
     case Kind::kTime: return t;
-    case Kind::kNegate: return -to_ginac(e.args[0], t);
-    case Kind::kAdd: return to_ginac(e.args[0], t) + to_ginac(e.args[1], t);
-    case Kind::kSubtract: return to_ginac(e.args[0], t) - to_ginac(e.args[1], t);
-    case Kind::kMultiply: return to_ginac(e.args[0], t) * to_ginac(e.args[1], t);
-    case Kind::kDivide: return to_ginac(e.args[0], t) / to_ginac(e.args[1], t);
-    case Kind::kPower: return GiNaC::pow(to_ginac(e.args[0], t), to_ginac(e.args[1], t));
+    case Kind::kNegate: return -a[0];
+    case Kind::kAdd: return a[0] + a[1];
+    case Kind::kSubtract: return a[0] - a[1];
+    case Kind::kMultiply: return a[0] * a[1];
+    case Kind::kDivide: return a[0] / a[1];
+    case Kind::kPower: return GiNaC::pow(a[0], a[1]);
     case Kind::kCall: break;
   }
-  const ex a = to_ginac(e.args[0], t);
-  if (e.function == "sin") return GiNaC::sin(a);
-  if (e.function == "cos") return GiNaC::cos(a);
-  if (e.function == "tan") return GiNaC::tan(a);
-  if (e.function == "exp") return GiNaC::exp(a);
-  if (e.function == "log") return GiNaC::log(a);
-  if (e.function == "sqrt") return GiNaC::sqrt(a);
-  if (e.function == "abs") return mbfe_fabs(a);
-  if (e.function == "step") return mbfe_step(a);
-  if (e.function == "min") return mbfe_fmin(a, to_ginac(e.args[1], t));
-  if (e.function == "max") return mbfe_fmax(a, to_ginac(e.args[1], t));
-  throw std::logic_error("to_ginac: unknown function " + e.function);
+  switch (n.function) {
+    case ir::Function::kSin: return GiNaC::sin(a[0]);
+    case ir::Function::kCos: return GiNaC::cos(a[0]);
+    case ir::Function::kTan: return GiNaC::tan(a[0]);
+    case ir::Function::kExp: return GiNaC::exp(a[0]);
+    case ir::Function::kLog: return GiNaC::log(a[0]);
+    case ir::Function::kSqrt: return GiNaC::sqrt(a[0]);
+    case ir::Function::kAbs: return mbfe_fabs(a[0]);
+    case ir::Function::kStep: return mbfe_step(a[0]);
+    case ir::Function::kMin: return mbfe_fmin(a[0], a[1]);
+    case ir::Function::kMax: return mbfe_fmax(a[0], a[1]);
+  }
+  throw std::logic_error("to_ginac: unknown function");
+}
+
+}  // namespace
+
+ex to_ginac(const ir::Expression& e, const GiNaC::symbol& t) {
+  // A postfix walk with a stack of converted arguments: no recursion, however
+  // deep the tree.
+  std::vector<ex> stack;
+  for (const ir::ExpressionNode& n : e.nodes()) {
+    const std::size_t arity = static_cast<std::size_t>(n.arity());
+    const ex* args = stack.data() + stack.size() - arity;
+    const ex value = convert(n, args, t);
+    stack.resize(stack.size() - arity);
+    stack.push_back(value);
+  }
+  return stack.back();
 }
 
 ex window_factor(const ir::TimeWindow& window, const GiNaC::symbol& t) {

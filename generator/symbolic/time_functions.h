@@ -16,7 +16,8 @@
 
 namespace mbfe::gen {
 
-/// `e` as a GiNaC expression in the symbol `t`; numbers as exact decimal rationals.
+/// `e` as a GiNaC expression in the symbol `t`; numbers as exact decimal
+/// rationals. Converted node by node without recursion.
 GiNaC::ex to_ginac(const ir::Expression& e, const GiNaC::symbol& t);
 
 /// 1 on [start, stop), 0 outside, as a product of steps (1 for an unbounded window).

@@ -43,9 +43,8 @@ inline bool finite2(const ir::Vec2& v) { return std::isfinite(v[0]) && std::isfi
 
 /// Every number written in the expression is finite (its value at some t may not be).
 inline bool finite_numbers(const ir::Expression& e) {
-  if (e.kind == ir::Expression::Kind::kNumber && !std::isfinite(e.value)) return false;
-  for (const auto& a : e.args)
-    if (!finite_numbers(a)) return false;
+  for (const ir::ExpressionNode& n : e.nodes())
+    if (n.kind == ir::ExpressionNode::Kind::kNumber && !std::isfinite(n.value)) return false;
   return true;
 }
 
