@@ -37,6 +37,15 @@ class ExpressionParser {
     skip_space();
     if (pos_ != text_.size()) fail(pos_, "unexpected '" + shown(std::string(1, text_[pos_])) + "'");
     Expression e(std::move(nodes_), ir::ExpressionSource{file_, what_, shown(text_), loc_});
+    // A part that does not depend on t is a number: one that is not finite
+    // (1/0, log(0), exp(1000)) or undefined (0^0) is an error here, where it
+    // is written, not a GiNaC exception in the generator or a NaN in a run.
+    if (const auto fault = e.constant_fault()) {
+      const ir::SourceLoc where = e.nodes()[fault->node].loc;
+      throw ir::ModelError(file_, where,
+                           what_ + ": " + fault->reason + "; expected a finite value in expression \"" +
+                               shown(text_) + "\"");
+    }
     return e;
   }
 
@@ -73,6 +82,12 @@ class ExpressionParser {
   /// appended, are at most `deepest` deep; returns the depth of its tree.
   int push(Expression::Kind kind, std::size_t at, int deepest, double value = 0.0,
            ir::Function function = ir::Function::kSin) {
+    if (nodes_.size() >= static_cast<std::size_t>(kMaxExpressionNodes))
+      fail(at, "more than " + std::to_string(kMaxExpressionNodes) +
+                   " numbers, names and operators (the limit, kMaxExpressionNodes)");
+    if (deepest + 1 > kMaxExpressionTreeDepth)
+      fail(at, "a tree deeper than " + std::to_string(kMaxExpressionTreeDepth) +
+                   " (the limit, kMaxExpressionTreeDepth; a sum or product of n terms is n deep)");
     ir::ExpressionNode n;
     n.kind = kind;
     n.value = value;

@@ -22,6 +22,10 @@ struct ParseLimits {
   /// yaml-cpp builds its tree, which costs it about 500 bytes and 5 us per
   /// value: 100,000 is twice a 2000-body model and bounds the tree near 50 MB.
   long max_yaml_values = 100000;
+  /// Numbers, names and operators of all expressions in t together (one
+  /// expression holds at most kMaxExpressionNodes, frontend/expression_parser.h):
+  /// ten of the largest, whose generated code compiles in about 30 s.
+  long max_expression_nodes = 100000;
 };
 
 /// Reads and validates `path`. @throws ir::ModelError on any problem, with the

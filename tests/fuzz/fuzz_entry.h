@@ -18,6 +18,7 @@
 
 #include "generator/emit/generate_solver.h"
 #include "ir/model.h"
+#include "frontend/expression_parser.h"
 #include "frontend/parse_model.h"
 #include "ir/identifiers.h"
 
@@ -41,11 +42,14 @@ inline void require(bool ok, const std::string& what) {
 
 inline bool finite2(const ir::Vec2& v) { return std::isfinite(v[0]) && std::isfinite(v[1]); }
 
-/// Every number written in the expression is finite (its value at some t may not be).
+/// Every number written in the expression is finite (its value at some t may
+/// not be), no part without t is infinite or undefined, and the tree keeps
+/// within the parser's limits.
 inline bool finite_numbers(const ir::Expression& e) {
   for (const ir::ExpressionNode& n : e.nodes())
     if (n.kind == ir::ExpressionNode::Kind::kNumber && !std::isfinite(n.value)) return false;
-  return true;
+  return !e.constant_fault() && e.depth() <= frontend::kMaxExpressionTreeDepth &&
+         e.nodes().size() <= static_cast<std::size_t>(frontend::kMaxExpressionNodes);
 }
 
 inline void check_invariants(const ir::Model& m) {
@@ -60,6 +64,7 @@ inline void check_invariants(const ir::Model& m) {
     require(std::isfinite(b.mass) && b.mass >= 0, "body '" + b.name + "': mass");
     require(std::isfinite(b.inertia) && b.inertia >= 0, "body '" + b.name + "': inertia");
     require(finite2(b.com) && finite2(b.joint.at) && finite2(b.joint.axis), "body '" + b.name + "': vector");
+    require(!b.joint.motion || finite_numbers(*b.joint.motion), "body '" + b.name + "': motion");
     for (const auto& p : b.points) {
       require(is_identifier(p.name), "point name '" + p.name + "' is not an identifier");
       require(finite2(p.position), "point '" + p.name + "' not finite");
