@@ -5,6 +5,7 @@
 
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "generator/emit/kernel_emitter.h"
 #include "generator/emit/solver_files.h"
@@ -51,10 +52,32 @@ GeneratedSolver generate_solver(const ir::Model& model) {
                             "model '" + model.name + "': " + e.what() +
                                 " (a product of its masses, lengths, inertias or loads exceeds 1.8e308; "
                                 "use values of a physical magnitude)");
+  } catch (const std::domain_error& e) {
+    // GiNaC's pole_error and domain_error. The expressions of the file are
+    // checked where they are converted (time_functions.h) and differentiated
+    // (the motions), with their positions; this is the net under them.
+    throw ir::ModelError(model.source_path, {},
+                         "model '" + model.name + "': the symbolic derivation found an undefined value (GiNaC: " +
+                             e.what() + ")");
   }
 }
 
 namespace {
+
+/// q'(t) and q''(t) of a motion q(t) = f. GiNaC may find a derivative
+/// undefined where the motion is not (d/dt 0^t = 0^t log 0): an error at the motion.
+std::pair<GiNaC::ex, GiNaC::ex> motion_derivatives(const ir::Expression& motion, const GiNaC::ex& f,
+                                                   const GiNaC::symbol& t) {
+  try {
+    const GiNaC::ex df = f.diff(t);
+    return {df, df.diff(t)};
+  } catch (const std::domain_error& e) {  // GiNaC's pole_error
+    const ir::ExpressionSource& s = motion.source();
+    throw ir::ModelError(s.file, s.loc,
+                         s.what + ": its derivative is undefined for every t (GiNaC: " + e.what() +
+                             "); expected a motion differentiable twice in expression \"" + s.text + "\"");
+  }
+}
 
 GeneratedSolver generate_solver_unchecked(const ir::Model& model) {
   RigidDerivation d;
@@ -149,10 +172,10 @@ GeneratedSolver generate_solver_unchecked(const ir::Model& model) {
     if (!m) continue;
     const std::string k = std::to_string(parts.driven.size());
     const GiNaC::ex f = to_ginac(*m, d.t);
-    const GiNaC::ex df = f.diff(d.t);
+    const auto [df, ddf] = motion_derivatives(*m, f, d.t);
     motion.outputs.push_back({"q[" + k + "]", d.code.define(f)});
     motion.outputs.push_back({"qd[" + k + "]", d.code.define(df)});
-    motion.outputs.push_back({"qdd[" + k + "]", d.code.define(df.diff(d.t))});
+    motion.outputs.push_back({"qdd[" + k + "]", d.code.define(ddf)});
     parts.driven.push_back(static_cast<int>(i));
   }
   if (!parts.driven.empty()) {
