@@ -18,6 +18,7 @@
 #include "runtime/simulation/run_diagnosis.h"
 #include "runtime/simulation/runs.h"
 #include "runtime/simulation/static_start.h"
+#include "runtime/simulation/time_expressions.h"
 
 namespace mbfe::runtime::detail {
 
@@ -302,6 +303,14 @@ SimulationReport run_coupled(const AssembledModel& model, const SimulationReques
   report.springs = tally;
   report.links = link_tally;
   if (report.run.status == SimulationStatus::kCompleted && row_fault.empty()) return report;
+  if (report.run.status != SimulationStatus::kInterrupted) {
+    // A load or motion of the bodies that is no longer finite broke the run, not the integrator.
+    const std::string cause = non_finite_expression(model.ir(), report.run.t, report.run.step);
+    if (!cause.empty()) {
+      report.message = cause;
+      return report;
+    }
+  }
   // The stable limit of the linearised system at the initial state tells an
   // instability of the integrator from a fault of the model.
   std::optional<StepLimit> limit;

@@ -4,6 +4,7 @@
 #include "runtime/simulation/run_diagnosis.h"
 #include "runtime/simulation/runs.h"
 #include "runtime/simulation/static_start.h"
+#include "runtime/simulation/time_expressions.h"
 
 namespace mbfe::runtime::detail {
 
@@ -56,6 +57,11 @@ SimulationReport run_rigid(const AssembledModel& model, const SimulationRequest&
     throw InvalidInput(e.what());
   }
   report.message = diagnose_run(report.run, std::nullopt);
+  if (report.run.status == SimulationStatus::kDiverged || report.run.status == SimulationStatus::kFailed) {
+    // A load or motion that is no longer finite broke the run, not the integrator.
+    const std::string cause = non_finite_expression(model.ir(), report.run.t, report.run.step);
+    if (!cause.empty()) report.message = cause;
+  }
   return report;
 }
 

@@ -4,6 +4,7 @@
 
 #include "runtime/simulation/invalid_input.h"
 #include "runtime/simulation/runs.h"
+#include "runtime/simulation/time_expressions.h"
 
 namespace mbfe::runtime {
 
@@ -35,6 +36,8 @@ SimulationReport simulate(const AssembledModel& model, const SimulationRequest& 
   if (!(request.t_end > 0.0) || !std::isfinite(request.t_end)) throw InvalidInput("--t-end must be > 0");
   if (request.every < 0) throw InvalidInput("--every must be a positive integer");
   const std::string& name = model.ir().name;
+  // Runs start at t = 0 (driver_options leaves SimulationOptions::t0 alone).
+  check_time_expressions(model.ir(), model.kernels(), 0.0, request.t_end);
   switch (model.kind()) {
     case ModelKind::kRigid:
       if (request.integrator.kind == IntegratorKind::kGeneralizedAlpha)
