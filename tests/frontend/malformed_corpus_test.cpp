@@ -41,6 +41,11 @@
 //   name_double_underscore, name_too_long, point_name_with_space, name_true
 // - very long strings: long_string_as_number, long_unknown_key, name_too_long
 // - deep nesting: deep_brackets, deep_braces_unclosed, deep_indentation, deep_dashes
+// - expressions in t whose constant parts have no value: expression_division_by_zero,
+//   expression_zero_over_zero, expression_log_of_zero, expression_log_of_negative,
+//   expression_sqrt_of_negative, expression_zero_to_zero, expression_negative_power_of_zero,
+//   expression_negative_base_fractional_power, expression_exp_overflow, expression_product_overflow
+//   (trees too deep or too large: tests/frontend/expression_parser_test.cpp)
 // - binary garbage and non-text: garbage.bin (written by make_garbage.py), nul_byte,
 //   invalid_utf8, control_character
 // A truly empty (0-byte) file cannot carry the header; parse_model_test covers it.
