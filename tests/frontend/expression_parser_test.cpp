@@ -134,20 +134,23 @@ std::string model_with_loads(int count, const std::string& value) {
 }
 
 TEST(ExpressionParser, AllExpressionsOfAModelShareOneBudget) {
-  // Ten loads of 9,999 nodes fit the 100,000 of ParseLimits::max_expression_nodes; eleven do not.
+  // One load of 9,999 nodes fits the 10,000 of ParseLimits::max_expression_nodes; two do not.
   const std::string group = "(" + flat_sum(500) + ")";
   std::string value = group;
   for (int i = 1; i < 10; ++i) value += "+" + group;
-  EXPECT_EQ(parse_model_text(model_with_loads(10, value), "m.yaml").loads.size(), 10u);
+  EXPECT_EQ(parse_model_text(model_with_loads(1, value), "m.yaml").loads.size(), 1u);
   try {
-    parse_model_text(model_with_loads(11, value), "m.yaml");
+    parse_model_text(model_with_loads(2, value), "m.yaml");
     FAIL() << "accepted";
   } catch (const ir::ModelError& e) {
-    // Line 19 holds the 11th load; the text of its value starts at column 37, after the quote.
+    // Line 10 holds the second load; the text of its value starts at column 37, after the quote.
     EXPECT_EQ(std::string(e.what()),
-              "m.yaml:19:37: load #11: value: the expressions in t hold 109989 numbers, names and operators up "
-              "to here, more than the limit of 100000 for the whole model (ParseLimits::max_expression_nodes)");
+              "m.yaml:10:37: load #2: value: the expressions in t hold 19998 numbers, names and operators up "
+              "to here, more than the limit of 10000 for the whole model (ParseLimits::max_expression_nodes)");
   }
+  ParseLimits more;
+  more.max_expression_nodes = 19998;
+  EXPECT_EQ(parse_model_text(model_with_loads(2, value), "m.yaml", more).loads.size(), 2u);
 }
 
 }  // namespace
