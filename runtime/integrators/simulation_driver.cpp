@@ -149,7 +149,9 @@ SimulationResult run_simulation(OdeSystem& system, const IntegratorSpec& integra
     }
     const double norm = y.norm();
     const double bound = bound_now();
-    if (!(norm <= bound)) {  // also catches nan
+    // Not finite is diverged whatever the bound, which is inf while the
+    // system has stayed at rest (a load that jumps to inf from rest).
+    if (!(norm <= bound) || !std::isfinite(norm)) {  // also catches nan
       y = last_good;
       result.status = SimulationStatus::kDiverged;
       result.norm = norm;

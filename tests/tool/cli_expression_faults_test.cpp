@@ -179,7 +179,7 @@ TEST_F(CliExpressionFaults, NotFiniteWhereTheRunStartsExits2AndWritesNothing) {
 }
 
 // 1/(t - 0.05) is finite where the run starts and infinite at t = 0.05: a
-// fault of the run. Before, "diverged ... |y| = -nan" or "nan", no load named.
+// fault of the run. Before, "diverged ... |y| = inf", no load named.
 TEST_F(CliExpressionFaults, LoadBecomingInfiniteDuringTheRunIsNamedAndTheRowsKept) {
   struct Case {
     std::string name, text, location, message;
@@ -187,7 +187,12 @@ TEST_F(CliExpressionFaults, LoadBecomingInfiniteDuringTheRunIsNamedAndTheRowsKep
   };
   const fs::path rigid = model("rigid.yaml", rigid_model("100/(t-0.05)"));
   const fs::path beam = model("beam.yaml", beam_model("1000/(t-0.05)"));
+  // At rest until the load jumps to inf: the driver's bound is still inf
+  // then, and the run went on writing rows of inf with exit status 0.
+  const fs::path rest = model("rest.yaml", rigid_model("step(t - 0.05)/(t - 0.05)"));
   const std::vector<Case> cases = {
+      {"rest", rest.string(), at_offset(rest.string(), kRigidValueAt, 14),
+       "load #1: value \"step(t - 0.05)/(t - 0.05)\" is inf at t = 0.05 s: division by zero", 1e-3},
       {"rigid", rigid.string(), at_offset(rigid.string(), kRigidValueAt, 3),
        "load #1: value \"100/(t-0.05)\" is inf at t = 0.05 s: division by zero", 1e-3},
       {"beam", beam.string(), at_offset(beam.string(), kBeamValueAt, 4),
