@@ -158,6 +158,12 @@ ex to_ginac(const ir::Expression& e, const GiNaC::symbol& t) {
   for (const ir::ExpressionNode& n : e.nodes()) {
     const std::size_t arity = static_cast<std::size_t>(n.arity());
     const ex* args = stack.data() + stack.size() - arity;
+    // 0^x with x in t: GiNaC keeps it, but its derivative 0^x log(0) throws
+    // from inside GiNaC's differentiation, which then leaks what it had built.
+    if (n.kind == ir::ExpressionNode::Kind::kPower && is_number(args[0]) && num(args[0]).is_zero() &&
+        !is_number(args[1]))
+      undefined(e, n, "'^' raises 0 to a power in t (0, 1 or undefined by the exponent's sign, and without a "
+                      "derivative)");
     ex value;
     try {
       value = convert(n, args, t);

@@ -80,7 +80,7 @@ TEST(TimeFunctions, LargeIntegerPowersOfNumbersAreTakenInDoubles) {
   EXPECT_NE(conversion_error("(t-t+2)^2000").find("'^' overflows a double"), std::string::npos);
 }
 
-TEST(TimeFunctions, MotionWhoseDerivativeIsUndefinedIsAnErrorAtTheMotion) {
+TEST(TimeFunctions, MotionWhoseDerivativeIsUndefinedIsAnErrorAtItsOperator) {
   const std::string text = R"yaml(model: m
 bodies:
   - name: slider
@@ -99,9 +99,10 @@ bodies:
     generate_solver(model);
     FAIL() << "generated";
   } catch (const ir::ModelError& e) {
+    // At the '^' (the text starts at column 53).
     EXPECT_EQ(std::string(e.what()),
-              "m.yaml:5:53: body 'slider': joint.motion: its derivative is undefined for every t (GiNaC: "
-              "power::eval(): division by zero); expected a motion differentiable twice in expression \"0^t\"");
+              "m.yaml:5:54: body 'slider': joint.motion: '^' raises 0 to a power in t (0, 1 or undefined by the "
+              "exponent's sign, and without a derivative); expected a real, finite value in expression \"0^t\"");
   }
 }
 
