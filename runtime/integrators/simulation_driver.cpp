@@ -96,7 +96,9 @@ bool FixedStepRun::step() {
   const double bound =
       scale > 0.0 ? options_.divergence_factor * scale : std::numeric_limits<double>::infinity();
   const double norm = y_.norm();
-  if (!(norm <= bound)) {  // also catches nan
+  // Not finite is diverged whatever the bound, which is inf while the
+  // system has stayed at rest (a load that jumps to inf from rest).
+  if (!(norm <= bound) || !std::isfinite(norm)) {  // also catches nan
     y_ = last_good_;
     result_.status = SimulationStatus::kDiverged;
     result_.norm = norm;

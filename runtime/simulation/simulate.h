@@ -37,6 +37,9 @@ namespace mbfe::runtime {
 ///         adjust on without an adjustment block, an unknown probe beam, an
 ///         initial state that violates the contacts with strict, a bad step
 ///         or end time).
+/// @throws ir::ModelError for a load or motion that is not finite where the
+///         run first evaluates it (runtime/simulation/time_expressions.h); one
+///         that becomes non-finite later ends the run with a message naming it.
 SimulationReport simulate(const AssembledModel& model, const SimulationRequest& request,
                           SimulationObserver& observer, const StepMonitor& keep_going = {});
 

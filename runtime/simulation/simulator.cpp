@@ -5,6 +5,7 @@
 #include "runtime/errors/invalid_input.h"
 #include "runtime/simulation/model_run.h"
 #include "runtime/simulation/run_diagnosis.h"
+#include "runtime/simulation/time_expressions.h"
 
 namespace mbfe::runtime {
 
@@ -20,6 +21,8 @@ constexpr double kGridSlack = 1e-9;  // of a step
 Simulator::Simulator(const AssembledModel& model, const SimulationRequest& request)
     : model_(model), request_(request) {
   check_request(request);
+  // Runs start at t = 0 (the options' t0 is left alone).
+  check_time_expressions(model.ir(), model.kernels(), 0.0, request.t_end);
   run_ = detail::make_model_run(model, request);
   SimulationOptions options = run_->options();
   options.step = request.step;
@@ -97,6 +100,14 @@ SimulationReport Simulator::report() {
   report.variant = run_->variant();
   run_->fill(report);
   if (report.run.status == SimulationStatus::kCompleted && row_fault_.empty()) return report;
+  if (report.run.status != SimulationStatus::kInterrupted && row_fault_.empty()) {
+    // A load or motion of the bodies that is no longer finite broke the run, not the integrator.
+    const std::string cause = non_finite_expression(model_.ir(), report.run.t, report.run.step);
+    if (!cause.empty()) {
+      report.message = cause;
+      return report;
+    }
+  }
   std::optional<StepLimit> limit;
   if (report.run.status != SimulationStatus::kInterrupted) limit = run_->stable_limit(request_.integrator);
   report.message = diagnose_run(report.run, limit, row_fault_);
