@@ -60,6 +60,7 @@ struct CoupledData {
   Eigen::VectorXd fc_extra;
   // The beams: loads, free accelerations a_c0 = M_c^-1 (P + f_c - C q' - K q).
   Eigen::VectorXd rc, ac0, tmp;
+  Eigen::VectorXd ldlt;  // the sparse solves' workspace (linalg/sparse_ldlt_solve.h)
   std::vector<LowRankStructure::Workspace> structures;
   // Constraints: values, W = M_c^-1 J_c^T, H = J_c W, g_c = J_c a_c0, and
   // the columns M_c^-1 e_k of the beam DOFs contacts have touched (a slider
@@ -75,7 +76,7 @@ struct CoupledData {
   // Split coordinates: the q_c, q_c' with the DOFs the forces read made
   // nodal, those DOFs, eta - zeta per split structure and its rate, the kept
   // modes' loads and accelerations.
-  Eigen::VectorXd split_qc, split_qcd, split_delta, split_delta_rate, split_g, split_acc;
+  Eigen::VectorXd split_qc, split_qcd, split_delta, split_delta_rate, split_acc;
   std::vector<int> split_read;
   // Loads the caller sets while a run goes (CoupledDynamics::set_applied_load).
   struct AppliedLoad {

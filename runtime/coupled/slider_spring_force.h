@@ -19,8 +19,11 @@
 // [0, L]) the contact is inactive: vehicles drive on and off.
 //
 // Tangent: k g g^T and c g g^T while it presses, g = d delta / dq. The change
-// of g itself (the point sliding over the shape functions, N dg/dq) is left
-// out: a Newton matrix, not an exact Jacobian. Along q_c and q' it is exact.
+// of g itself is left out, N dg/dq and the damper's c (dg/dq) q' (g's rigid
+// part holds the beam's slope under the point, so a point moving along the
+// beam makes delta' depend on q_c): a Newton matrix, not an exact Jacobian.
+// It is exact along q' everywhere, and along q_c in the beam's rows when the
+// bodies are at rest.
 #pragma once
 
 #include <Eigen/Core>

@@ -155,7 +155,7 @@ class CoupledRun final : public ModelRun {
       system_->full_state_at(t, y, probe_dofs_, q_, qd_);
     else
       system_->full_state(t, y, q_, qd_);
-    const ContactReport contacts = system_->report(t, y);
+    const ContactReport& contacts = system_->report(t, y);
     dynamics_->impose_motion(t, q_, qd_);
     std::size_t k = 0;
     values[k++] = t;
