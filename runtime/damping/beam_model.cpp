@@ -8,6 +8,9 @@
 
 namespace mbfe::runtime {
 
+static_assert(BeamAnalysisOptions{}.slice_modes == ModalOptions{}.slice_modes,
+              "the slicing's default modes per run, stated in beam_analysis_options.h");
+
 BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamAnalysisOptions& options) {
   BeamPart part;
   part.system = assemble_beam(beam, gravity);
@@ -22,7 +25,8 @@ BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamA
   mo.dense_limit = options.dense_limit;
   mo.num_modes = part.dense ? 0 : std::min(options.sparse_modes, n - 1);
   const ir::Adjustment& adj = beam.adjustment;
-  if (!part.dense && options.modes_kept_by_cap && adj.active() && adj.policy == ir::AdjustmentPolicy::kCap &&
+  if (!part.dense && options.modes_kept_by_cap && adj.active() &&
+      (adj.policy == ir::AdjustmentPolicy::kCap || adj.policy == ir::AdjustmentPolicy::kMass) &&
       adj.scope == ir::AdjustmentScope::kBeam && adj.omega_limit > 0.0) {
     // A kept mode has |r_fast| <= omega_limit, so omega <= omega_limit.
     ModalOptions sliced = mo;

@@ -53,18 +53,6 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
       adjustment_unavailable_at_ = model_.beams[e.beam].adjustment.loc;
     }
   }
-  // Policy mass changes the capped modes' modal mass, a low-rank update of M
-  // that the coupled runtime does not build yet: refused rather than run as
-  // some other model.
-  if (kind_ == ModelKind::kCoupled && adjustment_unavailable_.empty())
-    for (const ir::Beam& b : model_.beams)
-      if (b.adjustment.active() && b.adjustment.policy == ir::AdjustmentPolicy::kMass) {
-        adjustment_unavailable_at_ = b.adjustment.loc;
-        adjustment_unavailable_ = "beam '" + b.name +
-                                  "': policy mass is not yet available in coupled models; use policy cap, or run "
-                                  "the original model (--adjust off)";
-        break;
-      }
   for (const BeamPart& part : beams_.beams) {
     // The low-rank adjusted operators keep the computed modes and cap the
     // rest uniformly: right only if every mode left out is one the cap changes.
@@ -72,13 +60,15 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
     const ir::Beam& b = model_.beams[&part - beams_.beams.data()];
     if (b.adjustment.scope == ir::AdjustmentScope::kJoined) continue;
     if (adjustment_unavailable_.empty() && part.has_adjustment && !part.basis.complete &&
-        !(part.adjusted.adjusted > 0 && part.adjusted.change.back() == ModeChange::kAdjusted && part.adjusted.uniform)) {
+        !(part.adjusted.adjusted > 0 && part.adjusted.change.back() == ModeChange::kAdjusted &&
+          (part.adjusted.uniform || part.adjusted.policy == ir::AdjustmentPolicy::kMass))) {
       adjustment_unavailable_at_ = b.adjustment.loc;
       std::string why;
       if (!part.kept_modes_unavailable.empty())
         why = "the modes its cap keeps could not be found (" + part.kept_modes_unavailable + ")";
-      else if (b.adjustment.policy != ir::AdjustmentPolicy::kCap)
-        why = "its policy needs every mode; beyond that limit only a cap (policy cap) is built, from the modes it keeps";
+      else if (b.adjustment.policy != ir::AdjustmentPolicy::kCap && b.adjustment.policy != ir::AdjustmentPolicy::kMass)
+        why = "its policy needs every mode; beyond that limit only the policies cap and mass are built, from the "
+              "modes they keep";
       else
         why = "its " + std::to_string(part.basis.omega.size()) + " lowest modes do not reach its adjustment's limit";
       adjustment_unavailable_ = "beam '" + part.system.name + "' has " + std::to_string(part.system.M.rows()) +
