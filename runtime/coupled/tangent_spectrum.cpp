@@ -1,0 +1,123 @@
+#include "runtime/coupled/tangent_spectrum.h"
+
+#include <Spectra/GenEigsRealShiftSolver.h>
+#include <Spectra/GenEigsSolver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "runtime/coupled/linearization.h"
+
+namespace mbfe::runtime {
+
+namespace {
+
+// Arnoldi's convergence test: an eigenvalue is accepted when its Ritz
+// residual is below this share of |lambda|, so each comes out to about that
+// relative accuracy, far below what a step limit needs (5 digits are printed).
+constexpr double kArnoldiTol = 1e-10;
+// Restarts allowed before giving up; the shipped catenaries converge in tens.
+constexpr int kArnoldiMaxRestarts = 1000;
+// Krylov subspace of 2 nev + 1 vectors (ARPACK's advice), at least 40: the top
+// of a beam mesh's spectrum is a dense cluster, and a wider subspace separates
+// it in fewer restarts.
+int subspace_size(int nev, int n) { return std::min(n, std::max(2 * nev + 1, 40)); }
+
+// When A is singular (a zero mode: K_t has a null space) the bottom end is
+// searched about this negative real shift, relative to the largest |lambda|:
+// far below any physical mode yet far above the LU's round-off, and on the
+// stable side so that no eigenvalue sits on it.
+constexpr double kSingularShiftRel = 1e-9;
+
+struct StateProduct {
+  using Scalar = double;
+  const CoupledTangents* tangents;
+  Eigen::Index rows() const { return 2 * tangents->size(); }
+  Eigen::Index cols() const { return rows(); }
+  void perform_op(const double* x, double* y) const { tangents->apply_state_matrix(x, y); }
+};
+
+struct ShiftedSolve {
+  using Scalar = double;
+  CoupledTangents* tangents;
+  bool factored = false;  // at tangents->shift() already
+  Eigen::Index rows() const { return 2 * tangents->size(); }
+  Eigen::Index cols() const { return rows(); }
+  void set_shift(const double& sigma) {
+    if (!(factored && sigma == tangents->shift())) tangents->factorize_shifted(sigma);
+    factored = true;
+  }
+  void perform_op(const double* x, double* y) const { tangents->solve_shifted(x, y); }
+};
+
+template <typename Solver>
+std::vector<std::complex<double>> converged(Solver& solver, const char* end) {
+  solver.init();
+  solver.compute(Spectra::SortRule::LargestMagn, kArnoldiMaxRestarts, kArnoldiTol);
+  if (solver.info() != Spectra::CompInfo::Successful)
+    throw std::runtime_error(std::string("the Arnoldi iteration for the ") + end +
+                             " eigenvalues of the coupled linearisation did not converge in " +
+                             std::to_string(kArnoldiMaxRestarts) + " restarts");
+  const Eigen::VectorXcd ev = solver.eigenvalues();
+  return {ev.data(), ev.data() + ev.size()};
+}
+
+StateSpectrum dense_tangent_spectrum(const CoupledTangents& tangents) {
+  Eigen::MatrixXd a = tangents.dense_state_matrix();
+  // Balanced as linearized_spectrum does: rates in units of sqrt(max |A21|).
+  const int nz = tangents.size();
+  const double sigma = nz > 0 ? std::sqrt(a.bottomLeftCorner(nz, nz).cwiseAbs().maxCoeff()) : 0.0;
+  if (sigma > 0.0 && std::isfinite(sigma)) {
+    a.topRightCorner(nz, nz) *= sigma;
+    a.bottomLeftCorner(nz, nz) /= sigma;
+  }
+  return dense_spectrum(a);
+}
+
+}  // namespace
+
+StateSpectrum tangent_spectrum(CoupledTangents& tangents, const TangentSpectrumOptions& options) {
+  const int states = 2 * tangents.size();
+  std::vector<std::complex<double>> ev;
+  bool complete = true;
+  if (states <= options.max_dense_states || states <= 2 * options.extreme + 4) {
+    ev = dense_tangent_spectrum(tangents).eigenvalues;
+  } else {
+    complete = false;
+    const int nev = options.extreme;
+    StateProduct product{&tangents};
+    Spectra::GenEigsSolver<StateProduct> top(product, nev, subspace_size(nev, states));
+    ev = converged(top, "fastest");
+    double largest = 0.0;
+    for (const auto& l : ev) largest = std::max(largest, std::abs(l));
+    ShiftedSolve solve{&tangents};
+    double sigma = 0.0;
+    try {
+      tangents.factorize_shifted(0.0);
+      solve.factored = true;
+    } catch (const std::runtime_error&) {
+      sigma = -kSingularShiftRel * largest;
+    }
+    Spectra::GenEigsRealShiftSolver<ShiftedSolve> bottom(solve, nev, subspace_size(nev, states), sigma);
+    for (const auto& l : converged(bottom, "slowest")) {
+      // Both ends meet only when the model is barely above the dense limit.
+      const bool seen = std::any_of(ev.begin(), ev.end(), [&](const std::complex<double>& m) {
+        return std::abs(m - l) <= kArnoldiTol * 100.0 * std::max(std::abs(l), 1.0);
+      });
+      if (!seen) ev.push_back(l);
+    }
+    // Repeated real eigenvalues come out with imaginary parts of round-off.
+    for (auto& l : ev)
+      if (std::abs(l.imag()) <= 1e-10 * std::abs(l)) l = {l.real(), 0.0};
+  }
+  ev.insert(ev.end(), 2 * static_cast<std::size_t>(tangents.num_driven()), std::complex<double>(0.0, 0.0));
+  StateSpectrum out = spectrum_from_eigenvalues(std::move(ev));
+  out.complete = complete;
+  return out;
+}
+
+}  // namespace mbfe::runtime
