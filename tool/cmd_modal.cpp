@@ -132,7 +132,8 @@ int cmd_modal(const Args& args) {
     for (const ir::Beam& b : m.beams) coupled_any_adjustment = coupled_any_adjustment || b.adjustment.active();
     const Model model = Model::load(path);
     const int coordinates = static_cast<int>(m.bodies.size()) + model.assembled().beams().dof;
-    if (coordinates <= runtime::kMaxLinearizedCoordinates)
+    if (coordinates <= runtime::kMaxLinearizedCoordinates && coordinates > kLinearizationNoticeCoordinates &&
+        !runtime::linearized_from_tangents(model.assembled()))
       std::cerr << linearization_notice("modal", coordinates, coupled_any_adjustment ? 2 : 1);
     try {
       coupled_original_model = model.spectrum(false);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "runtime/coupled/tangent_spectrum.h"
 #include "runtime/simulation/assembled_model.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
@@ -103,7 +104,8 @@ int cmd_stability(const Args& args) {
   const bool any_adjustment = model.assembled().has_adjustment();
   if (coupled) {
     const int coordinates = static_cast<int>(model.ir().bodies.size()) + model.assembled().beams().dof;
-    if (coordinates <= runtime::kMaxLinearizedCoordinates)
+    if (coordinates <= runtime::kMaxLinearizedCoordinates && coordinates > kLinearizationNoticeCoordinates &&
+        !runtime::linearized_from_tangents(model.assembled()))
       std::cerr << linearization_notice("stability", coordinates, any_adjustment ? 2 : 1);
   }
   const runtime::ModelSpectrum original_spectrum = model.spectrum(false);
@@ -154,6 +156,10 @@ int cmd_stability(const Args& args) {
     std::cout << "  " << growing << " eigenvalue" << (growing == 1 ? " has" : "s have")
               << " Re > 0: the motion leaves the initial state (not an equilibrium), and every "
                  "method follows that growth; the limits are those of the others\n";
+  if (!original_spectrum.full.complete)
+    std::cout << "  (the " << runtime::kFastestEigenvalues << " fastest and " << runtime::kSlowestEigenvalues
+              << " slowest eigenvalues of each, by Arnoldi: they set the limits but for a lightly damped mode "
+                 "in the middle of the spectrum, which could lower forward Euler's and AB2's)\n";
   std::cout << "  original: fastest eigenvalue " << fastest(original) << " 1/s\n";
   if (any_adjustment)
     std::cout << "  adjusted: fastest eigenvalue " << fastest(adjusted) << " 1/s\n";

@@ -177,6 +177,48 @@ void CoupledTangents::apply(Part part, const Eigen::Ref<const Eigen::VectorXd>& 
   }
 }
 
+void CoupledTangents::apply_sum(Part p1, const Eigen::Ref<const Eigen::VectorXd>& x1, Part p2,
+                                const Eigen::Ref<const Eigen::VectorXd>& x2, Eigen::VectorXd& y) const {
+  auto sparse = [&](Part part) -> const Eigen::SparseMatrix<double>& {
+    return part == Part::kMass ? mass_ : (part == Part::kDamping ? damping_ : stiffness_);
+  };
+  y.noalias() = sparse(p1) * x1;
+  y.noalias() += sparse(p2) * x2;
+  const auto& structures = model_.structures();
+  for (std::size_t s = 0; s < structures.size(); ++s) {
+    const LowRankStructure& st = *structures[s];
+    auto term = [&](Part part) -> const LowRankStructure::Term& {
+      return part == Part::kMass ? st.mass() : (part == Part::kDamping ? st.damping() : st.stiffness());
+    };
+    const LowRankStructure::Term &t1 = term(p1), &t2 = term(p2);
+    // mu1 B x1 + mu2 B x2 + M Phi_L (d1 .* Phi_L^T M x1 + d2 .* Phi_L^T M x2).
+    const int ns = st.size();
+    pair_.resize(ns, 2);
+    st.gather(x1.data() + nfb_, gx_);
+    pair_.col(0) = gx_;
+    st.gather(x2.data() + nfb_, gx_);
+    pair_.col(1) = gx_;
+    gy_.noalias() = t1.mu * (st.B() * pair_.col(0));
+    gy_.noalias() += t2.mu * (st.B() * pair_.col(1));
+    if (st.rank() > 0 && ((t1.d.array() != 0.0).any() || (t2.d.array() != 0.0).any())) {
+      // Phi_L^T [M x1, M x2] row by row: Phi_L (n_s x m, row-major, often
+      // hundreds of megabytes) is read once; a matrix product would copy it
+      // into packed panels first, and two matrix-vector products read it twice.
+      const Eigen::MatrixXd mx = st.M() * pair_;
+      const LowRankStructure::RowMajorMatrix& phi = st.phi();
+      modal_pair_.setZero(phi.cols(), 2);
+      for (Eigen::Index i = 0; i < phi.rows(); ++i) {
+        modal_pair_.col(0).noalias() += mx(i, 0) * phi.row(i).transpose();
+        modal_pair_.col(1).noalias() += mx(i, 1) * phi.row(i).transpose();
+      }
+      const Eigen::VectorXd w = t1.d.cwiseProduct(modal_pair_.col(0)) + t2.d.cwiseProduct(modal_pair_.col(1));
+      gx_.noalias() = st.phi() * w;
+      gy_.noalias() += st.M() * gx_;
+    }
+    st.scatter_add(gy_, y.data() + nfb_);
+  }
+}
+
 void CoupledTangents::apply_mass(const Eigen::VectorXd& x, Eigen::VectorXd& y) const { apply(Part::kMass, x, y); }
 void CoupledTangents::apply_damping(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   apply(Part::kDamping, x, y);
@@ -207,9 +249,7 @@ void CoupledTangents::solve_mass(const Eigen::VectorXd& r, Eigen::VectorXd& x) c
 void CoupledTangents::apply_state_matrix(const double* in, double* out) const {
   const Eigen::Map<const Eigen::VectorXd> z(in, nf_), zd(in + nf_, nf_);
   Eigen::Map<Eigen::VectorXd>(out, nf_) = zd;
-  apply(Part::kStiffness, z, tmp_);
-  apply(Part::kDamping, zd, tmp2_);
-  tmp_ += tmp2_;
+  apply_sum(Part::kStiffness, z, Part::kDamping, zd, tmp_);
   solve_mass(tmp_, sol_);
   Eigen::Map<Eigen::VectorXd>(out + nf_, nf_) = -sol_;
 }
@@ -303,9 +343,8 @@ void CoupledTangents::solve_shifted(const double* in, double* out) const {
   // (sigma^2 M + sigma C + K) x1 = -(M (b2 + sigma b1) + C b1).
   const Eigen::Map<const Eigen::VectorXd> b1(in, nf_), b2(in + nf_, nf_);
   tmp2_ = b2 + sigma_ * b1;
-  apply(Part::kMass, tmp2_, tmp_);
-  apply(Part::kDamping, b1, tmp2_);
-  rhs_ = -(tmp_ + tmp2_);
+  apply_sum(Part::kMass, tmp2_, Part::kDamping, b1, rhs_);
+  rhs_ = -rhs_;
   if (blocks_) {
     block_solver_.solve(rhs_, sol_);
   } else {

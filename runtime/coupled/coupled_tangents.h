@@ -88,6 +88,10 @@ class CoupledTangents {
  private:
   enum class Part { kMass, kDamping, kStiffness };
   void apply(Part part, const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::VectorXd& y) const;
+  // y = P1 x1 + P2 x2, the structures' low-rank parts in one pass over their
+  // kept modes each way (a product by A reads Phi_L twice, not four times).
+  void apply_sum(Part p1, const Eigen::Ref<const Eigen::VectorXd>& x1, Part p2,
+                 const Eigen::Ref<const Eigen::VectorXd>& x2, Eigen::VectorXd& y) const;
   void rigid_tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
                       Eigen::MatrixXd& K_b, Eigen::MatrixXd& C_b) const;
   void element_tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
@@ -102,6 +106,7 @@ class CoupledTangents {
   // The structures' workspaces (mutable scratch of the const operations).
   mutable std::vector<LowRankStructure::Workspace> ws_;
   mutable Eigen::VectorXd gx_, gy_, tmp_, tmp2_, rhs_, sol_;
+  mutable Eigen::MatrixXd pair_, modal_pair_;
   // The shifted matrix: blocks of known inverse, or a sparse LU with the
   // structures' low rank by Woodbury.
   double sigma_ = 0.0;

@@ -17,11 +17,14 @@ namespace mbfe::runtime {
 namespace {
 
 // Arnoldi's convergence test: an eigenvalue is accepted when its Ritz
-// residual is below this share of |lambda|, so each comes out to about that
-// relative accuracy, far below what a step limit needs (5 digits are printed).
-constexpr double kArnoldiTol = 1e-10;
-// Restarts allowed before giving up; the shipped catenaries converge in tens.
-constexpr int kArnoldiMaxRestarts = 1000;
+// residual is below this share of |lambda|. The limits come out to about 4
+// digits (the ten-span catenary's RK4 limit moves by 2e-4 between 1e-6 and
+// 1e-10, its top being ten nearly equal copies of one span's), and each
+// decade tighter costs about twice the products there (docs/performance.md).
+constexpr double kArnoldiTol = 1e-6;
+// Restarts allowed before giving up; the shipped catenaries converge in tens
+// to about two hundred.
+constexpr int kArnoldiMaxRestarts = 2000;
 // Krylov subspace of 2 nev + 1 vectors (ARPACK's advice), at least 40: the top
 // of a beam mesh's spectrum is a dense cluster, and a wider subspace separates
 // it in fewer restarts.
@@ -84,13 +87,12 @@ StateSpectrum tangent_spectrum(CoupledTangents& tangents, const TangentSpectrumO
   const int states = 2 * tangents.size();
   std::vector<std::complex<double>> ev;
   bool complete = true;
-  if (states <= options.max_dense_states || states <= 2 * options.extreme + 4) {
+  if (states <= options.max_dense_states || states <= 2 * (options.fastest + options.slowest)) {
     ev = dense_tangent_spectrum(tangents).eigenvalues;
   } else {
     complete = false;
-    const int nev = options.extreme;
     StateProduct product{&tangents};
-    Spectra::GenEigsSolver<StateProduct> top(product, nev, subspace_size(nev, states));
+    Spectra::GenEigsSolver<StateProduct> top(product, options.fastest, subspace_size(options.fastest, states));
     ev = converged(top, "fastest");
     double largest = 0.0;
     for (const auto& l : ev) largest = std::max(largest, std::abs(l));
@@ -102,7 +104,8 @@ StateSpectrum tangent_spectrum(CoupledTangents& tangents, const TangentSpectrumO
     } catch (const std::runtime_error&) {
       sigma = -kSingularShiftRel * largest;
     }
-    Spectra::GenEigsRealShiftSolver<ShiftedSolve> bottom(solve, nev, subspace_size(nev, states), sigma);
+    Spectra::GenEigsRealShiftSolver<ShiftedSolve> bottom(solve, options.slowest, subspace_size(options.slowest, states),
+                                                         sigma);
     for (const auto& l : converged(bottom, "slowest")) {
       // Both ends meet only when the model is barely above the dense limit.
       const bool seen = std::any_of(ev.begin(), ev.end(), [&](const std::complex<double>& m) {

@@ -30,18 +30,22 @@
 namespace mbfe::runtime {
 
 /// Models with up to this many state eigenvalues (2 n_f) get the dense,
-/// complete spectrum: 1,200 states decompose in about 5 s on one core, and
-/// the shipped vehicle models (164 to 254 states) in well under 1 s.
+/// complete spectrum (the shipped vehicle models have 164 to 254 states and
+/// decompose in well under a second; the dense QR grows as states^3).
 inline constexpr int kMaxDenseTangentStates = 1200;
 
 /// Eigenvalues computed at each end of a large model's spectrum (conjugate
-/// pairs count twice): enough to hold the fastest cluster of a beam mesh's
-/// top modes and the zero, growing and slow modes at the bottom.
-inline constexpr int kExtremeEigenvalues = 24;
+/// pairs count twice). The fastest few set the explicit methods' limits; more
+/// cost restarts on the cluster at the top (a beam mesh's top modes, an
+/// adjusted structure's capped root repeated for every capped mode). The
+/// slowest hold the zero modes, the motion's own growth and the slow modes.
+inline constexpr int kFastestEigenvalues = 8;
+inline constexpr int kSlowestEigenvalues = 12;
 
 struct TangentSpectrumOptions {
   int max_dense_states = kMaxDenseTangentStates;
-  int extreme = kExtremeEigenvalues;
+  int fastest = kFastestEigenvalues;
+  int slowest = kSlowestEigenvalues;
 };
 
 /// The spectrum of `tangents`' A, plus 2 exact zeros per driven coordinate.
