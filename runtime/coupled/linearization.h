@@ -98,7 +98,12 @@ inline constexpr double kLinearizationNoiseRel = 1e-7;
 /// eigen-solver at ~1e-16 max |lambda| (measured on the shipped vehicle
 /// models); an eigenvalue below this share of max |lambda| is set to 0. A
 /// physical mode that slow turns by 2.8e-10 rad per step at RK4's limit:
-/// nothing a step limit depends on.
+/// nothing a step limit depends on. (The tangents' spectrum,
+/// tangent_spectrum.h, has the driven coordinates' pairs exactly zero. A free
+/// coordinate with neither stiffness nor damping is a defective zero pair,
+/// which round-off splits into +-sqrt(eps) ~ 1e-8 max |lambda|: above this,
+/// but below kLinearizationNoiseRel, so not counted as growing, and its
+/// mirror image sets no limit the fast modes do not set first.)
 inline constexpr double kZeroModeRel = 1e-10;
 
 /// The spectrum with every |lambda| <= kZeroModeRel max |lambda| set to 0.
