@@ -144,8 +144,10 @@ TEST(AdvisorRuns, ADivergedVehicleRunNamesItsUndampedModeNotRoundOff) {
   // deck's first bending mode is undamped (zeta_min 0, the tyre over a
   // support at the start). The diagnosis of the diverged run names that mode,
   // omega_1 = (pi / L)^2 sqrt(E I / (rho A)) = 12.762 rad/s (closed form for a
-  // simply supported beam); the difference linearisation named a round-off
-  // eigenvalue of the driven carriage's zero pair (+2.2e-13) instead.
+  // simply supported beam). The difference linearisation blamed the step
+  // instead: "exceeds forward_euler's stable limit 6.5118e-12 (fastest
+  // eigenvalue -1.1007e-5 + 1.8387e3i)", an undamped mode whose Re is
+  // differencing noise.
   const Model model = Model::load(std::string(MBFE_SOURCE_DIR) + "/models/bridge_moving_mass.yaml");
   const double omega1 = std::pow(M_PI / 20.0, 2) * std::sqrt(2.1e11 * 1.0e-4 / (7850.0 * 0.01));
   Rows rows;
