@@ -30,6 +30,16 @@ constexpr int kArnoldiMaxRestarts = 2000;
 // it in fewer restarts.
 int subspace_size(int nev, int n) { return std::min(n, std::max(2 * nev + 1, 40)); }
 
+// A zero mode of the tangents' A is exactly zero but for round-off: a simple
+// one comes out at ~eps s (s ~ omega_max, the balancing scale below), a
+// defective pair (a free coordinate with neither stiffness nor damping:
+// z'' = 0, a Jordan block) splits into +-sqrt(eps) s ~ 1e-8 s (1.1e-8
+// measured on a free slider beside the moving-mass bridge). Eigenvalues below
+// this share of s are zero modes. A physical mode that slow turns by under
+// 3e-6 rad per step at RK4's limit (~2.8 / s), and an undamped one grows
+// under forward Euler by a factor 1 + 4e-12 a step: nothing a limit is about.
+constexpr double kZeroModeScaleRel = 1e-6;
+
 // When A is singular (a zero mode: K_t has a null space) the bottom end is
 // searched about this negative real shift, relative to the largest |lambda|:
 // far below any physical mode yet far above the LU's round-off, and on the
@@ -119,11 +129,11 @@ StateSpectrum tangent_spectrum(CoupledTangents& tangents, const TangentSpectrumO
   const int states = 2 * tangents.size();
   std::vector<std::complex<double>> ev;
   bool complete = true;
+  const double s = states > 0 ? balancing_scale(tangents) : 1.0;
   if (states <= options.max_dense_states || states <= 2 * (options.fastest + options.slowest)) {
     ev = dense_tangent_spectrum(tangents).eigenvalues;
   } else {
     complete = false;
-    const double s = balancing_scale(tangents);
     StateProduct product{&tangents, s, {}};
     Spectra::GenEigsSolver<StateProduct> top(product, options.fastest, subspace_size(options.fastest, states));
     ev = converged(top, "fastest");
@@ -150,6 +160,8 @@ StateSpectrum tangent_spectrum(CoupledTangents& tangents, const TangentSpectrumO
     for (auto& l : ev)
       if (std::abs(l.imag()) <= 1e-10 * std::abs(l)) l = {l.real(), 0.0};
   }
+  for (auto& l : ev)
+    if (std::abs(l) <= kZeroModeScaleRel * s) l = 0.0;
   ev.insert(ev.end(), 2 * static_cast<std::size_t>(tangents.num_driven()), std::complex<double>(0.0, 0.0));
   StateSpectrum out = spectrum_from_eigenvalues(std::move(ev));
   out.complete = complete;

@@ -48,7 +48,9 @@ struct TangentSpectrumOptions {
   int slowest = kSlowestEigenvalues;
 };
 
-/// The spectrum of `tangents`' A, plus 2 exact zeros per driven coordinate.
+/// The spectrum of `tangents`' A, plus 2 exact zeros per driven coordinate;
+/// eigenvalues below 1e-6 of the stiffness scale (~omega_max) are zero modes
+/// and set to 0 (tangent_spectrum.cpp says why).
 /// complete = false for the two ends of a large model. Leaves `tangents`
 /// factored at the last shift used.
 /// @throws std::runtime_error when the Arnoldi iteration does not converge
