@@ -13,8 +13,10 @@
 #include "runtime/coupled/augmented_system.h"
 #include "runtime/coupled/coordinate_partitioning.h"
 #include "runtime/coupled/coupled_implicit_system.h"
+#include "runtime/coupled/coupled_tangents.h"
 #include "runtime/coupled/linearization.h"
 #include "runtime/coupled/split_beam_system.h"
+#include "runtime/coupled/tangent_spectrum.h"
 #include "runtime/errors/invalid_input.h"
 #include "runtime/errors/multibody_errors.h"
 #include "runtime/simulation/beam_probes.h"
@@ -26,16 +28,14 @@ namespace mbfe::runtime::detail {
 
 namespace {
 
-// Coupled models up to this many coordinates find their static start with
-// the dense difference Jacobian (tested longest); larger ones with the sparse tangent.
-constexpr int kDenseStaticLimit = 600;
-
 // A projected coordinate that moved less than this (relative) moved by round-off.
 constexpr double kProjectionNoise = 1e-12;
 
-// The linearisation behind a diagnosis is a dense eigenproblem growing as
-// n^3: a diagnosis should take seconds, and at 1,927 coordinates it takes 6
-// minutes (`mbfe stability` still gives the limits of larger models).
+// The linearisation behind a diagnosis of a model with constraint contacts
+// is a dense eigenproblem growing as n^3: a diagnosis should take seconds,
+// and at 1,927 coordinates it takes 6 minutes (`mbfe stability` still gives
+// the limits of larger models). Models without them go through their
+// tangents and Arnoldi (seconds at any size).
 constexpr int kMaxDiagnosedCoordinates = 1000;
 
 /// Multiplier columns, stacked like the constraint rows: lambda_<contact>_1/_2
@@ -99,12 +99,8 @@ class CoupledRun final : public ModelRun {
     const int n = dynamics_->n();
     model.initial_coordinates(q0_, qd0_);
     dynamics_->impose_motion(0.0, q0_, qd0_);
-    if (request.static_start.value_or(model.ir().initial.static_start)) {
-      // The dense difference Jacobian costs n evaluations and an n^3 solve:
-      // large models take the sparse tangent.
-      if (n <= kDenseStaticLimit || !coupled_static_state_sparse(model.ir(), dynamics_, q0_, qd0_))
-        coupled_static_state(model.ir(), *dynamics_, q0_, qd0_);
-    }
+    if (request.static_start.value_or(model.ir().initial.static_start))
+      coupled_static_start(model.ir(), dynamics_, q0_, qd0_);
     try {
       y0_ = state_of(0.0, q0_, qd0_);
     } catch (const ContactError& e) {
@@ -220,13 +216,20 @@ class CoupledRun final : public ModelRun {
 
   std::optional<StepLimit> stable_limit(const IntegratorSpec& integrator) override {
     // The stable limit of the linearised system at the initial state tells an
-    // instability of the integrator from a fault of the model.
-    if (dynamics_->n() > kMaxDiagnosedCoordinates) return std::nullopt;
+    // instability of the integrator from a fault of the model: the
+    // eigenvalues `mbfe stability` takes (runtime/advisor/model_spectrum.h),
+    // zero modes and round-off growth told from growth of the motion.
     try {
-      // The eigenvalues `mbfe stability` takes: a real part at round-off of
-      // the modulus is zero (an undamped mode), not growth.
-      const StateSpectrum spectrum = linearized_spectrum(model_.make_dynamics(adjusted_), 0.0, q0_, qd0_);
-      return stable_step(integrator, split_growing(spectrum).limiting.eigenvalues);
+      const std::shared_ptr<CoupledDynamics> dynamics = model_.make_dynamics(adjusted_);
+      StateSpectrum spectrum;
+      if (dynamics->model().m() == 0) {
+        CoupledTangents tangents(*dynamics, 0.0, q0_, qd0_);
+        spectrum = tangent_spectrum(tangents);
+      } else {
+        if (dynamics_->n() > kMaxDiagnosedCoordinates) return std::nullopt;
+        spectrum = linearized_spectrum(dynamics, 0.0, q0_, qd0_);
+      }
+      return stable_step(integrator, split_growing(with_zero_modes(spectrum)).limiting.eigenvalues);
     } catch (const std::exception&) {
       return std::nullopt;  // no limit known: the message says only what happened
     }
