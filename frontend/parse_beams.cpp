@@ -240,7 +240,11 @@ Adjustment ModelParser::parse_adjustment(const MapView& view) {
                                                shown(zeta->value.Scalar()) + ")"));
     }
   }
-  if (const Field* policy = view.find("policy")) {
+  // The default policy is mass: the cap's roots with the original static
+  // compliance (docs/damping-adjustment.md, "Which policy is the default").
+  adjustment.policy = AdjustmentPolicy::kMass;
+  const Field* policy = view.find("policy");
+  if (policy != nullptr) {
     constexpr AdjustmentPolicy kPolicies[] = {
         AdjustmentPolicy::kCap, AdjustmentPolicy::kPaperEq25, AdjustmentPolicy::kKeepSlow,
         AdjustmentPolicy::kNone, AdjustmentPolicy::kMass};
@@ -249,6 +253,8 @@ Adjustment ModelParser::parse_adjustment(const MapView& view) {
   }
   if (const Field* scope = view.find("scope")) {
     adjustment.scope = view.choice(*scope, {"beam", "joined"}) == 0 ? AdjustmentScope::kBeam : AdjustmentScope::kJoined;
+    // A joined structure takes only the cap, so there the cap is the default.
+    if (adjustment.scope == AdjustmentScope::kJoined && policy == nullptr) adjustment.policy = AdjustmentPolicy::kCap;
     // The joined structure is adjusted in the low-rank form, which needs one
     // uniform cap for every changed mode.
     if (adjustment.scope == AdjustmentScope::kJoined && adjustment.policy != AdjustmentPolicy::kCap) {

@@ -176,7 +176,7 @@ struct Adjustment {
   double omega_limit = 0.0;      // rad/s
   double margin = 0.1;           // the paper's l
   double zeta_min = 0.0;         // damping-ratio floor for oscillatory modes
-  AdjustmentPolicy policy = AdjustmentPolicy::kCap;
+  AdjustmentPolicy policy = AdjustmentPolicy::kCap;  // a block without `policy:` parses as kMass
   AdjustmentScope scope = AdjustmentScope::kBeam;
   SourceLoc loc;
   /// The block is present and changes something (its policy is not `none`).

@@ -159,15 +159,15 @@ TEST(SimulateVehicle, PolicyMassRunsAndKeepsTheStaticDeflection) {
   // the point load's deflection shows.
   TempDir dir;
   std::string yaml = slurp(source("models/bridge_moving_mass.yaml"));
-  const std::string from = "policy: cap}", moving = "motion: \"20*t\"";
+  const std::string from = "policy: mass}", moving = "motion: \"20*t\"";
   ASSERT_NE(yaml.find(from), std::string::npos);
   ASSERT_NE(yaml.find(moving), std::string::npos);
   yaml.replace(yaml.find(moving), moving.size(), "motion: \"5.0\"");
-  const fs::path cap_model = dir / "cap.yaml";
-  spit(cap_model, yaml);
-  yaml.replace(yaml.find(from), from.size(), "policy: mass}");
   const fs::path model = dir / "mass.yaml";
   spit(model, yaml);
+  yaml.replace(yaml.find(from), from.size(), "policy: cap}");
+  const fs::path cap_model = dir / "cap.yaml";
+  spit(cap_model, yaml);
   const auto first_deflection = [&](const fs::path& m, const std::string& flags) {
     const fs::path csv = dir / "out.csv";
     const CliRun r = run_cli("simulate " + quote(m.string()) + " --quiet --t-end 0.001 --probe deck@5 " + flags +
