@@ -8,6 +8,9 @@
 #include "runtime/fem/beam_system.h"
 #include "runtime/coupled/contact_constraints.h"
 #include "runtime/multibody/rigid_system.h"
+#include "runtime/simulation/assembled_model.h"
+#include "runtime/simulation/simulate.h"
+#include "runtime/structure/coupled_beam.h"
 
 namespace mbfe {
 
@@ -179,9 +182,23 @@ std::vector<runtime::StepLimitRow> Model::step_limits() const {
   return runtime::step_limit_table(original, &adjusted);
 }
 
+runtime::SimulationRequest Model::request() const {
+  const ir::Model& model = shared_->ir;
+  runtime::SimulationRequest request;
+  try {
+    request.integrator = runtime::parse_integrator(model.simulation.integrator);
+  } catch (const std::invalid_argument& e) {
+    throw runtime::InvalidRequest("integrator", e.what());
+  }
+  request.step = model.simulation.step;
+  request.t_end = model.simulation.t_end;
+  return request;
+}
+
 runtime::SimulationReport Model::simulate(const runtime::SimulationRequest& request,
-                                          runtime::SimulationObserver& observer) const {
-  return runtime::simulate(assembled(), request, observer);
+                                          runtime::SimulationObserver& observer,
+                                          const runtime::StepMonitor& keep_going) const {
+  return runtime::simulate(assembled(), request, observer, keep_going);
 }
 
 }  // namespace mbfe

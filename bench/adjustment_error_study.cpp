@@ -181,7 +181,6 @@ Trace run(const Model& model, const std::string& integrator, double h, double t_
   r.t_end = t_end;
   r.adjust = adjusted;
   r.every = std::max<long>(1, std::lround(rows / h));
-  r.handle_sigint = false;
   Trace t;
   t.h = h;
   t.t_end = t_end;

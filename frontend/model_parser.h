@@ -36,6 +36,9 @@ class ModelParser {
   void parse(const YAML::Node& root);
 
  private:
+  /// All expressions in t together within ParseLimits::max_expression_nodes.
+  void check_expression_budget(const MapView& top) const;
+
   // ---- names -------------------------------------------------------------
 
   /// Bodies and beams both name coordinates, so they share one namespace.

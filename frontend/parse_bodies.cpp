@@ -7,12 +7,20 @@ namespace mbfe::frontend {
 
 void ModelParser::parse_bodies(const MapView& top, const Field& field) {
   const auto items = bounded_list(top, field, limits_.max_bodies, "max_bodies");
+  long total_points = 0;
   for (std::size_t i = 0; i < items.size(); ++i) {
     const MapView view(file_, items[i],
                        item_context(items[i], "body", i, limits_.max_name_length), "",
                        field.value_loc);
     model_.bodies.push_back(parse_body(view));
     const Body& body = model_.bodies.back();
+    total_points += static_cast<long>(body.points.size());
+    if (total_points > limits_.max_points) {
+      const NamedPoint& last = body.points.back();
+      view.fail(last.loc, view.prefixed("point '" + last.name + "': the bodies hold " + std::to_string(total_points) +
+                                        " named points up to here, more than the limit of " +
+                                        std::to_string(limits_.max_points) + " (ParseLimits::max_points)"));
+    }
     body_by_name_.emplace(body.name, static_cast<int>(i));
     auto& points = point_by_name_.emplace_back();
     for (std::size_t k = 0; k < body.points.size(); ++k) {

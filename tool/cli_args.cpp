@@ -1,11 +1,22 @@
 #include "tool/cli_args.h"
 
+#include <map>
+
 #include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 
 namespace mbfe::tool {
+
+std::string request_flag(const std::string& field) {
+  static const std::map<std::string, std::string> flags = {
+      {"integrator", "--integrator"}, {"step", "--step"},       {"t_end", "--t-end"},
+      {"every", "--every"},           {"adjust", "--adjust"},   {"probes", "--probe"},
+      {"formulation", "--formulation"}, {"static_start", "--start"}, {"strict", "--strict"}};
+  const auto it = flags.find(field);
+  return it == flags.end() ? field : it->second;
+}
 
 ParsedArgs::ParsedArgs(const std::vector<std::string>& args, const std::set<std::string>& value_flags,
                        const std::set<std::string>& bool_flags) {

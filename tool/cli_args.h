@@ -19,6 +19,11 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The flag that sets a field of a runtime::SimulationRequest ("step" ->
+/// "--step", "t_end" -> "--t-end", "probes" -> "--probe"); the field's own
+/// name for one no flag sets.
+std::string request_flag(const std::string& field);
+
 class ParsedArgs {
  public:
   /// @param value_flags flags that take a value (without the leading "--").

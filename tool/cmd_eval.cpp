@@ -6,12 +6,13 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "runtime/simulation/assembled_model.h"
 #include "api/solver_cache.h"
 #include "frontend/parse_model.h"
 #include "ir/coordinate_layout.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/json_text.h"
+#include "api/json_text.h"
 
 namespace mbfe::tool {
 

@@ -9,12 +9,13 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "runtime/simulation/assembled_model.h"
 #include "frontend/parse_model.h"
 #include "runtime/damping/beam_model.h"
 #include "runtime/errors/invalid_input.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/json_text.h"
+#include "api/json_text.h"
 #include "tool/linearization_notice.h"
 #include "tool/modal_report.h"
 #include "tool/plot_spectrum.h"

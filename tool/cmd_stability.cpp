@@ -15,9 +15,10 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "runtime/simulation/assembled_model.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/json_text.h"
+#include "api/json_text.h"
 #include "tool/linearization_notice.h"
 
 namespace mbfe::tool {

@@ -10,7 +10,7 @@
 #include "runtime/signal/force_statistics.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/json_text.h"
+#include "api/json_text.h"
 #include "tool/results_columns.h"
 
 namespace mbfe::tool {

@@ -63,6 +63,10 @@ int main(int argc, char** argv) {
   } catch (const mbfe::ir::ModelError& e) {
     std::cerr << e.what() << "\n";
     return 2;
+  } catch (const mbfe::runtime::InvalidRequest& e) {
+    // The runtime names the request's field; the command line says its flag.
+    std::cerr << "mbfe " << name << ": " << request_flag(e.field()) << " " << e.detail() << "\n";
+    return 2;
   } catch (const mbfe::runtime::InvalidInput& e) {
     std::cerr << "mbfe " << name << ": " << e.what() << "\n";
     return 2;

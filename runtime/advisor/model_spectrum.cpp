@@ -8,6 +8,7 @@
 #include "runtime/coupled/linearization.h"
 #include "runtime/errors/multibody_errors.h"
 #include "runtime/errors/invalid_input.h"
+#include "runtime/simulation/assembled_model.h"
 #include "runtime/simulation/static_start.h"
 
 namespace mbfe::runtime {

@@ -25,10 +25,11 @@
 
 #include "runtime/integrators/integrator.h"
 #include "runtime/modal/state_spectrum.h"
-#include "runtime/simulation/assembled_model.h"
 #include "runtime/stability/step_limits.h"
 
 namespace mbfe::runtime {
+
+class AssembledModel;
 
 struct ModelSpectrum {
   StateSpectrum full;      // every eigenvalue

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "runtime/errors/multibody_errors.h"
+#include "runtime/fem/hermite_shape.h"
 
 namespace mbfe::runtime {
 
@@ -166,7 +167,8 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
   ForceSink sink{d.qb_force.data(), d.fc_extra.data()};
   const auto& forces = model.forces();
   for (std::size_t e = 0; e < forces.size(); ++e) forces[e]->add_force(args, *d.forces[e], sink);
-  const bool extra = !forces.empty();
+  const bool applied = add_applied_loads(t, d.fc_extra.data());
+  const bool extra = !forces.empty() || applied;
   d.rb = d.qb_force - d.fb;
   // Driven coordinates: q'' known. Their rows of M and F - Q are kept first,
   // for the drive reactions.
@@ -401,6 +403,43 @@ double CoupledDynamics::phi_max(const ConstraintValues& cv, int* row) const {
   const double v = cv.phi.cwiseAbs().maxCoeff(&r);
   if (row) *row = r;
   return v;
+}
+
+void CoupledDynamics::set_applied_load(int beam, double s, std::function<double(double)> value) {
+  const auto& beams = model_->beams();
+  if (beam < 0 || beam >= static_cast<int>(beams.size()))
+    throw std::invalid_argument("beam index " + std::to_string(beam) + " outside the model's " +
+                                std::to_string(beams.size()) + " beams");
+  const BeamMesh& mesh = beams[static_cast<std::size_t>(beam)].mesh;
+  if (!(s >= 0.0 && s <= mesh.length()))
+    throw std::invalid_argument("beam '" + mesh.name + "': s = " + std::to_string(s) + " m is off the beam [0, " +
+                                std::to_string(mesh.length()) + "] m");
+  CoupledData::AppliedLoad load;
+  load.beam = beam;
+  load.s = s;
+  load.value = std::move(value);
+  const int element = std::min(static_cast<int>(std::floor(s / mesh.element_length)), mesh.num_elements - 1);
+  const double xi = (s - element * mesh.element_length) / mesh.element_length;
+  const hermite::Row4 n = hermite::N(xi, mesh.element_length);
+  for (int j = 0; j < 4; ++j) {
+    const int f = mesh.full_to_free[2 * element + j];
+    load.cols[j] = f >= 0 ? beams[static_cast<std::size_t>(beam)].offset + f : -1;
+    load.weights[j] = n[j];
+  }
+  auto& applied = data_.applied;
+  applied.erase(std::remove_if(applied.begin(), applied.end(),
+                               [&](const CoupledData::AppliedLoad& a) { return a.beam == beam && a.s == s; }),
+                applied.end());
+  applied.push_back(std::move(load));
+}
+
+bool CoupledDynamics::add_applied_loads(double t, double* fc) const {
+  for (const CoupledData::AppliedLoad& a : data_.applied) {
+    const double v = a.value(t);
+    for (int j = 0; j < 4; ++j)
+      if (a.cols[j] >= 0 && a.weights[j] != 0.0) fc[a.cols[j]] += v * a.weights[j];
+  }
+  return !data_.applied.empty();
 }
 
 void CoupledDynamics::impose_motion(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd) {

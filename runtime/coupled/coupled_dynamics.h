@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -76,6 +77,15 @@ struct CoupledData {
   // modes' loads and accelerations.
   Eigen::VectorXd split_qc, split_qcd, split_delta, split_delta_rate, split_g, split_acc;
   std::vector<int> split_read;
+  // Loads the caller sets while a run goes (CoupledDynamics::set_applied_load).
+  struct AppliedLoad {
+    int beam = 0;
+    double s = 0.0;                     // m along the beam
+    int cols[4] = {-1, -1, -1, -1};     // q_c columns of the element's DOFs (-1: fixed)
+    double weights[4] = {0, 0, 0, 0};   // the shape functions at s
+    std::function<double(double)> value;  // N at t
+  };
+  std::vector<AppliedLoad> applied;
 };
 
 class CoupledDynamics {
@@ -153,6 +163,15 @@ class CoupledDynamics {
   const SpringContactState& spring_state(int k) const;
   const LinkState& link_state(int k) const;
   const ForceState& force_state(int element) const { return *data_.forces[static_cast<std::size_t>(element)]; }
+
+  /// A point load on beam `beam` at s m, value(t) in N along the beam's
+  /// transverse direction, from now on: an input the caller sets between
+  /// steps, not part of the model (it replaces one set before at the same
+  /// beam and point). @throws std::invalid_argument for a beam index out of
+  /// range or s off the beam.
+  void set_applied_load(int beam, double s, std::function<double(double)> value);
+  /// Adds the applied loads at t to f_c (nc entries); true if there are any.
+  bool add_applied_loads(double t, double* fc) const;
 
   /// Driven joints (`motion:`): their rigid coordinates, model order. In
   /// evaluate() their q and q' are those of the motion at t, whatever the

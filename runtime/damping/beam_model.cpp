@@ -8,6 +8,9 @@
 
 namespace mbfe::runtime {
 
+static_assert(BeamAnalysisOptions{}.slice_modes == ModalOptions{}.slice_modes,
+              "the slicing's default modes per run, stated in beam_analysis_options.h");
+
 BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamAnalysisOptions& options) {
   BeamPart part;
   part.system = assemble_beam(beam, gravity);

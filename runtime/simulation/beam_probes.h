@@ -9,18 +9,9 @@
 #include "ir/model.h"
 #include "runtime/damping/beam_model.h"
 #include "runtime/fem/beam_system.h"
+#include "runtime/simulation/simulation_types.h"
 
 namespace mbfe::runtime {
-
-/// A probe as asked for: BEAM@S, S in m along the beam.
-struct ProbeSpec {
-  std::string label;  // as written, e.g. "beam1@0.5": the column name
-  std::string beam;
-  double s = 0.0;     // m
-};
-
-/// Parses "BEAM@S". @throws InvalidInput naming the text for any other form.
-ProbeSpec parse_probe(const std::string& text);
 
 /// A probe resolved on the assembled beams: w(s) = sum_a weights.w[a] q_c[offset + free_index[a]].
 struct BeamProbe {

@@ -29,7 +29,6 @@ runtime::SimulationReport run(const Model& model, const char* integrator, double
   r.step = step;
   r.t_end = t_end;
   r.every = 1;
-  r.handle_sigint = false;
   return model.simulate(r, rows);
 }
 

@@ -34,7 +34,6 @@ runtime::SimulationReport run(const Model& m, const char* integrator, double h, 
   r.step = h;
   r.t_end = t_end;
   r.every = every;
-  r.handle_sigint = false;
   return m.simulate(r, rows);
 }
 
@@ -151,13 +150,12 @@ TEST(Catenary, ImplicitIntegratorsRefuseAdjustedWires) {
   r.step = 1e-3;
   r.t_end = 0.01;
   r.adjust = true;
-  r.handle_sigint = false;
   Rows rows;
   try {
     model.simulate(r, rows);
     FAIL() << "generalized_alpha ran the adjusted wires";
   } catch (const runtime::InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("--adjust off"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("(adjust off)"), std::string::npos) << e.what();
   }
 }
 

@@ -339,7 +339,6 @@ std::vector<double> contact_force(const std::string& text, const char* integrato
   r.t_end = 0.9;
   r.every = every;
   r.adjust = adjusted;
-  r.handle_sigint = false;
   test::RecordedRows rows;
   const runtime::SimulationReport report = model.simulate(r, rows);
   EXPECT_TRUE(report.message.empty()) << report.message;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "api/mbfe.h"
+#include "runtime/simulation/assembled_model.h"
 #include "tests/support/two_span_catenary.h"
 
 namespace mbfe {

@@ -121,7 +121,6 @@ TEST_P(MovingForce, MidspanHistoryAndDafMatchTheSeries) {
   request.t_end = kLength / v + 1.0 / f1;  // the crossing and one free period
   request.every = 1;
   request.probes = {runtime::parse_probe("deck@10")};
-  request.handle_sigint = false;
   Midspan mid;
   const runtime::SimulationReport report = model.simulate(request, mid);
   ASSERT_TRUE(report.message.empty()) << report.message;
@@ -160,7 +159,6 @@ TEST(MovingForce, NothingBeforeEntry) {
   request.t_end = 0.6;
   request.every = 1;
   request.probes = {runtime::parse_probe("deck@10")};
-  request.handle_sigint = false;
   Midspan mid;
   ASSERT_TRUE(model.simulate(request, mid).message.empty());
   double moved = 0.0;

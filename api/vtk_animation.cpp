@@ -1,4 +1,4 @@
-#include "tool/vtk_animation.h"
+#include "api/vtk_animation.h"
 
 #include <algorithm>
 #include <array>
@@ -10,8 +10,9 @@
 #include <stdexcept>
 
 #include "runtime/fem/hermite_shape.h"
+#include "runtime/simulation/assembled_model.h"
 
-namespace mbfe::tool {
+namespace mbfe {
 
 namespace fs = std::filesystem;
 
@@ -230,4 +231,4 @@ void VtkAnimation::write_frame(const runtime::OutputRow& row, const std::string&
   if (!file) throw std::runtime_error(path + ": cannot write");
 }
 
-}  // namespace mbfe::tool
+}  // namespace mbfe

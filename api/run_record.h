@@ -1,0 +1,27 @@
+// What a results file holds and how its run ended: the record written beside
+// it (FILE.csv.json, FILE.npy.json; docs/model-format.md "Results"), for
+// whoever reads the results later (a person, a notebook, a sweep, mbfe stats
+// and mbfe plot, which read the columns' names and units from it).
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "api/mbfe.h"
+
+namespace mbfe {
+
+/// {"mbfe", "model": {name, file, sha256}, "integrator", "step", "t_end",
+/// "variant", "columns": [{name, unit}], "rows", "status", "message",
+/// "steps", "t_reached", "wall_seconds", "newton"?, "springs"?, "links"?}.
+nlohmann::json run_record(const Model& model, const runtime::SimulationRequest& request,
+                          const runtime::SimulationReport& report, const runtime::OutputLayout& layout,
+                          std::size_t rows);
+
+/// Writes `record` to results_path + ".json", unless the results went to a
+/// device or a pipe (--out /dev/null: no file to describe, and no
+/// "/dev/null.json" to leave behind).
+void write_run_record(const std::string& results_path, const nlohmann::json& record);
+
+}  // namespace mbfe

@@ -1,0 +1,24 @@
+// How far the modal analysis of a model's beams goes: what a caller chooses
+// when it loads a model (api/mbfe.h LoadOptions), apart from the analysis.
+#pragma once
+
+namespace mbfe::runtime {
+
+/// How far the modal analysis of a beam goes.
+struct BeamAnalysisOptions {
+  /// Beams up to this many DOFs get every mode (dense path).
+  int dense_limit = 2000;
+  /// Beams above dense_limit: 0 = refused (time integration and the stability
+  /// advisor use every mode); k > 0 = the lowest k modes by sparse Lanczos,
+  /// a partial spectrum (what `mbfe modal` shows of a large beam).
+  int sparse_modes = 0;
+  /// Beams above dense_limit whose adjustment is a per-beam cap: every mode
+  /// the cap keeps (omega <= omega_limit) and the first it changes, by
+  /// spectrum slicing, instead of sparse_modes: what the low-rank adjusted
+  /// operators need (a coupled model's time integration).
+  bool modes_kept_by_cap = false;
+  /// Modes per Lanczos run of that slicing (SlicedModalOptions::slice_modes).
+  int slice_modes = 100;  // ModalOptions{}.slice_modes (beam_model.cpp checks they agree)
+};
+
+}  // namespace mbfe::runtime
