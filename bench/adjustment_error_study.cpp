@@ -158,6 +158,7 @@ struct Trace {
   std::vector<std::vector<double>> rows;
   double h = 0.0, wall = 0.0, cpu = 0.0, t_end = 0.0;
   std::string message;  // why it did not run or did not finish
+  double estimate = NAN;  // adjusted runs: the accuracy estimate's largest static change (report.adjustment_estimate)
   bool complete() const { return message.empty(); }
 };
 
@@ -190,6 +191,7 @@ Trace run(const Model& model, const std::string& integrator, double h, double t_
     const runtime::SimulationReport report = model.simulate(r, sink);
     t.wall = report.run.wall_seconds;
     t.message = report.message;
+    if (report.adjustment_estimate) t.estimate = report.adjustment_estimate->max;
   } catch (const std::exception& e) {
     t.message = std::string("refused: ") + e.what();
   }
@@ -409,18 +411,18 @@ struct Row {
 
 void class_table(std::ostream& md, const std::vector<Row>& rows, bool stats, const runtime::ForceStatistics* ref_stats,
                  std::size_t contacts) {
-  md << "| run | step | rigid | w | slope | contact force history, worst contact | peak, worst contact |"
-     << (stats ? " statistics, worst (of the mean) |" : "") << " wall | CPU |\n|---|---|---|---|---|---|---|"
+  md << "| run | step | rigid | w | slope | contact force history, worst contact | peak, worst contact | estimate |"
+     << (stats ? " statistics, worst (of the mean) |" : "") << " wall | CPU |\n|---|---|---|---|---|---|---|---|"
      << (stats ? "---|" : "") << "---|---|\n";
   for (const Row& r : rows) {
     md << "| " << r.run << " | " << r.step << " | ";
     if (!r.err.complete) {
-      md << (r.trace.message.empty() ? "no rows" : r.trace.message) << " |  |  |  |  |" << (stats ? "  |" : "")
+      md << (r.trace.message.empty() ? "no rows" : r.trace.message) << " |  |  |  |  |  |" << (stats ? "  |" : "")
          << "  |  |\n";
       continue;
     }
     md << sci(r.err.cls[kRigid]) << " | " << sci(r.err.cls[kW]) << " | " << sci(r.err.cls[kSlope]) << " | "
-       << sci(r.err.worst_history()) << " | " << sci(r.err.worst_peak()) << " | ";
+       << sci(r.err.worst_history()) << " | " << sci(r.err.worst_peak()) << " | " << sci(r.trace.estimate) << " | ";
     if (stats && !r.err.statistics) {
       md << "- | ";
     } else if (stats) {

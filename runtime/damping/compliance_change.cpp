@@ -31,7 +31,7 @@ ComplianceChangeEstimator::ComplianceChangeEstimator(const Eigen::SparseMatrix<d
                                                      const Eigen::SparseMatrix<double>& K,
                                                      const Eigen::SparseMatrix<double>& C, const ModalBasis& basis,
                                                      std::vector<ModalDynamics> original)
-    : M_(M), C_(C), basis_(basis), original_(std::move(original)) {
+    : M_(M), basis_(basis), original_(std::move(original)) {
   const Eigen::Index n = M.rows();
   if (M.cols() != n || K.rows() != n || K.cols() != n || C.rows() != n || C.cols() != n ||
       basis.phi.rows() != n || basis.phi.cols() != basis.omega.size() ||
@@ -40,7 +40,26 @@ ComplianceChangeEstimator::ComplianceChangeEstimator(const Eigen::SparseMatrix<d
                                 std::to_string(basis.phi.rows()) + " x " + std::to_string(basis.phi.cols()) +
                                 ") and its " + std::to_string(original_.size()) + " modal dynamics do not fit");
   k_factor_ = factor(K, "K");
-  if (!basis_.complete) m_factor_ = factor(M, "M");
+  if (!basis_.complete) {
+    m_factor_ = factor(M, "M");
+    // The modes beyond the basis are damped as c = alpha + beta k
+    // (Rayleigh): alpha and beta by least squares over the basis' modes.
+    double sk = 0, skk = 0, sc = 0, skc = 0;
+    const double count = static_cast<double>(original_.size());
+    for (const ModalDynamics& mode : original_) {
+      sk += mode.k;
+      skk += mode.k * mode.k;
+      sc += mode.c;
+      skc += mode.k * mode.c;
+    }
+    const double det = count * skk - sk * sk;
+    if (original_.size() >= 2 && det > 0.0) {
+      beta_ = (count * skc - sk * sc) / det;
+      alpha_ = (sc - beta_ * sk) / count;
+    } else if (!original_.empty()) {
+      beta_ = original_[0].c / original_[0].k;
+    }
+  }
 }
 
 ComplianceChangeEstimator::Point ComplianceChangeEstimator::point(const CompliancePoint& p) const {
@@ -54,27 +73,22 @@ ComplianceChangeEstimator::Point ComplianceChangeEstimator::point(const Complian
   out.compliance = p.e.dot(x);
   out.p2 = (basis_.phi.transpose() * p.e).array().square().matrix();
   if (!basis_.complete) {
-    // The moments of the modes beyond the basis: the whole structure's minus
-    // the basis' share. Over every mode (M^-1 = Phi Phi^T, K^-1 = Phi
-    // diag(1/k) Phi^T): sum p^2 = e^T M^-1 e, sum p^2 / k = e^T K^-1 e,
-    // sum p^2 / k^2 = e^T K^-1 M K^-1 e, and sum p^2 c / k^2 = e^T K^-1 C K^-1 e
-    // when Phi^T C Phi is diagonal (Rayleigh; otherwise it is the nodal
-    // receptance's own first-order term).
-    double s0 = 0.0, s1 = 0.0, s2 = 0.0, sd = 0.0;
-    for (Eigen::Index j = 0; j < out.p2.size(); ++j) {
-      const double k = original_[j].k;
-      s0 += out.p2[j];
-      s1 += out.p2[j] / k;
-      s2 += out.p2[j] / (k * k);
-      sd += out.p2[j] * original_[j].c / (k * k);
-    }
-    const Eigen::VectorXd y = m_factor_->solve(p.e);  // M^-1 e
-    // Each difference is a sum of non-negative terms: round-off may leave a
-    // tiny negative one, which means none.
-    out.tail0 = std::max(0.0, p.e.dot(y) - s0);
-    out.tail1 = std::max(0.0, out.compliance - s1);
-    out.tail2 = std::max(0.0, x.dot(M_ * x) - s2);
-    out.tail_damping = std::max(0.0, x.dot(C_ * x) - sd);
+    // The moments of the modes beyond the basis, from the point's load
+    // without the basis' share, e_t = e - M Phi p (Phi^T e_t = 0 and
+    // M^-1 e_t = sum over the tail of phi_j p_j): x_t = K^-1 e_t is the
+    // tail's static answer sum phi_j p_j / k_j, so sum p^2 = e_t^T M^-1 e_t,
+    // sum p^2 / k = e^T x_t and sum p^2 / k^2 = x_t^T M x_t. Subtracting the
+    // basis' share from the whole structure's sums instead would lose the
+    // tail of sum p^2 / k^2 to round-off: the lowest mode dominates it by
+    // (k_tail / k_1)^2 (1e13 on the paper beam). The solve's error lies in
+    // the low modes (K^-1 amplifies them), so x_t is projected off the
+    // basis once more.
+    const Eigen::VectorXd e_t = p.e - M_ * (basis_.phi * (basis_.phi.transpose() * p.e));
+    Eigen::VectorXd x_t = k_factor_->solve(e_t);
+    x_t -= basis_.phi * (basis_.phi.transpose() * (M_ * x_t));
+    out.tail0 = std::max(0.0, e_t.dot(m_factor_->solve(e_t)));
+    out.tail1 = std::max(0.0, p.e.dot(x_t));
+    out.tail2 = std::max(0.0, x_t.dot(M_ * x_t));
   }
   return out;
 }
@@ -97,7 +111,12 @@ ComplianceChange ComplianceChangeEstimator::evaluate(const Point& point, const A
       if (adjusted.change[j] != ModeChange::kKept)
         d += point.p2[j] * (receptance(adjusted.modes[j], omega) - receptance(original_[j], omega));
     if (tail) {
-      const Complex original = point.tail1 + omega * omega * point.tail2 - Complex(0.0, omega * point.tail_damping);
+      // sum p^2 / (k (1 + i Omega beta) - Omega^2 + i Omega alpha) to first
+      // order in (Omega^2 - i Omega alpha) / (k (1 + i Omega beta)): the
+      // Rayleigh part i Omega beta is kept whole (Omega beta is not small
+      // for a beam's stiffness-proportional damping).
+      const Complex rb(1.0, omega * beta_);
+      const Complex original = (point.tail1 + Complex(omega * omega, -omega * alpha_) / rb * point.tail2) / rb;
       const Complex now = mass ? point.tail1 / Complex(1.0 - omega * omega / k_star, omega * c_star / k_star)
                                : point.tail0 / Complex(k_star - omega * omega, omega * c_star);
       d += now - original;

@@ -20,10 +20,11 @@
 // faster than the force (slower ones answer by their inertia, not their
 // stiffness). Modes beyond a partial basis (a large beam's, all of them
 // changed by the policy cap or mass) enter through three moments of the point,
-// sum p^2, sum p^2 / k and sum p^2 / k^2, the whole structure's by sparse
-// solves (e^T M^-1 e, e^T K^-1 e, e^T K^-1 M K^-1 e) minus the basis' part,
-// and their original response by its expansion to first order in
-// (Omega^2 - i Omega c_j) / k_j (valid because they are far above Omega).
+// sum p^2, sum p^2 / k and sum p^2 / k^2, by sparse solves with the point's
+// load less the basis' share (e - M Phi Phi^T e),
+// and their original response (Rayleigh damping c = alpha + beta k, fitted to
+// the basis' modes) by its expansion to first order in
+// (Omega^2 - i Omega alpha) / k_j (valid because they are far above Omega).
 #pragma once
 
 #include <Eigen/Core>
@@ -57,7 +58,8 @@ struct ComplianceChange {
 class ComplianceChangeEstimator {
  public:
   /// @param M, K, C the structure's matrices (n x n; K positive definite: a
-  ///        structure its supports hold);
+  ///        structure its supports hold; the damping itself is read from
+  ///        `original`, Rayleigh beyond a partial basis);
   /// @param basis its modes, complete or the lowest ones (every mode beyond a
   ///        partial basis must be one the policy cap or mass changes);
   /// @param original their modal dynamics (unit modal mass).
@@ -74,7 +76,6 @@ class ComplianceChangeEstimator {
     double series_compliance = 0.0, omega = 0.0;
     double compliance = 0.0;                    // e^T K^-1 e
     double tail0 = 0.0, tail1 = 0.0, tail2 = 0.0;  // sum p^2, p^2/k, p^2/k^2 beyond the basis
-    double tail_damping = 0.0;                  // sum p^2 c / k^2 beyond the basis
   };
   Point point(const CompliancePoint& p) const;
 
@@ -88,10 +89,11 @@ class ComplianceChangeEstimator {
   const std::vector<ModalDynamics>& original() const { return original_; }
 
  private:
-  Eigen::SparseMatrix<double> M_, C_;
+  Eigen::SparseMatrix<double> M_;
   ModalBasis basis_;
   std::vector<ModalDynamics> original_;
   std::shared_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> k_factor_, m_factor_;
+  double alpha_ = 0.0, beta_ = 0.0;  // 1/s, s: the Rayleigh damping c = alpha + beta k fitted to the basis' modes
 };
 
 }  // namespace mbfe::runtime

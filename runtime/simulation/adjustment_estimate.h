@@ -1,0 +1,31 @@
+// The accuracy estimate of an adjusted run: at every place of an adjusted
+// beam where a force acts (contacts, links, point and moving loads) or a
+// displacement is read (probes), the relative change the adjustment makes in
+// the static compliance there (runtime/damping/compliance_change.h;
+// docs/damping-adjustment.md, "The accuracy estimate", derives it and holds
+// it against measured errors). Made before the run's first step.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "runtime/simulation/assembled_model.h"
+#include "runtime/simulation/simulation_types.h"
+
+namespace mbfe::runtime {
+
+/// Above this estimate (1 %) a run tells the user (adjustment_notice).
+constexpr double kAdjustmentNoticeThreshold = 0.01;
+
+/// The estimate for the adjusted beams of `model` with these probes.
+/// Moving points (slider contacts, moving loads) are evaluated at up to 33
+/// nodes spread along their beam and report the largest. Beams adjusted with
+/// scope joined, or whose partial basis does not end in a changed mode, are
+/// listed in not_estimated. @throws InvalidInput for a probe on no beam.
+AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::vector<ProbeSpec>& probes);
+
+/// One line for the user when estimate.max exceeds kAdjustmentNoticeThreshold
+/// (what, where, how much, what to do); empty otherwise.
+std::string adjustment_notice(const AdjustmentEstimate& estimate, const ir::Model& model);
+
+}  // namespace mbfe::runtime
