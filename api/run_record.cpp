@@ -25,6 +25,10 @@ nlohmann::json adjustment_estimate_json(const runtime::AdjustmentEstimate& estim
   j["where"] = estimate.largest >= 0 ? nlohmann::json(estimate.points[static_cast<std::size_t>(estimate.largest)].what)
                                      : nlohmann::json();
   j["not_estimated"] = estimate.not_estimated;
+  nlohmann::json limits = nlohmann::json::array();
+  for (const runtime::AdjustmentEstimate::Limit& l : estimate.limits)
+    limits.push_back({{"beam", l.beam}, {"omega_limit", l.omega_limit}, {"chosen", l.chosen}});
+  j["omega_limits"] = limits;
   return j;
 }
 

@@ -168,6 +168,15 @@ py::object estimate_of(const rt::SimulationReport& report) {
   out["max"] = e.max;
   out["where"] = e.largest >= 0 ? py::object(py::str(e.points[static_cast<std::size_t>(e.largest)].what)) : py::none();
   out["not_estimated"] = e.not_estimated;
+  py::list limits;
+  for (const rt::AdjustmentEstimate::Limit& l : e.limits) {
+    py::dict d;
+    d["beam"] = l.beam;
+    d["omega_limit"] = l.omega_limit;
+    d["chosen"] = l.chosen;
+    limits.append(d);
+  }
+  out["omega_limits"] = limits;
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "runtime/damping/compliance_change.h"
+#include "runtime/errors/invalid_input.h"
 
 namespace mbfe::runtime {
 
@@ -69,6 +70,18 @@ Eigen::VectorXd deflection_weights(const BeamSystem& system, double s) {
   return e;
 }
 
+/// Where a place is evaluated: its s, or for a moving place nodes spread along the beam.
+std::vector<double> positions(const Place& place, const BeamSystem& system) {
+  if (!place.moving) return {place.s};
+  std::vector<double> path;
+  const int samples = std::min(kPathSamples, system.num_nodes);
+  for (int k = 0; k < samples; ++k) {
+    const int node = samples == 1 ? 0 : static_cast<int>(std::lround(double(k) * (system.num_nodes - 1) / (samples - 1)));
+    path.push_back(std::min(system.length, node * system.element_length));
+  }
+  return path;
+}
+
 /// Why a beam's adjustment cannot be estimated, or empty.
 std::string unsupported(const ir::Beam& beam, const BeamPart& part) {
   if (beam.adjustment.scope == ir::AdjustmentScope::kJoined) return "scope joined";
@@ -93,6 +106,7 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
     const BeamPart& part = beams.beams[i];
     if (!part.has_adjustment) continue;
     const std::string name = "'" + ir.beams[i].name + "'";
+    out.limits.push_back({ir.beams[i].name, ir.beams[i].adjustment.omega_limit, ir.beams[i].adjustment.omega_limit_auto});
     if (const std::string why = unsupported(ir.beams[i], part); !why.empty()) {
       out.not_estimated.push_back(name + ": " + why);
       continue;
@@ -108,15 +122,7 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
     const BeamSystem& system = part.system;
     for (const Place& place : all) {
       if (place.beam != static_cast<int>(i)) continue;
-      std::vector<double> path{place.s};
-      if (place.moving) {
-        path.clear();
-        const int samples = std::min(kPathSamples, system.num_nodes);
-        for (int k = 0; k < samples; ++k) {
-          const int node = samples == 1 ? 0 : static_cast<int>(std::lround(double(k) * (system.num_nodes - 1) / (samples - 1)));
-          path.push_back(std::min(system.length, node * system.element_length));
-        }
-      }
+      const std::vector<double> path = positions(place, system);
       AdjustmentEstimatePoint best;
       best.what = place.what;
       best.beam = ir.beams[i].name;
@@ -147,6 +153,77 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
     }
   }
   return out;
+}
+
+double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAnalysisOptions& options) {
+  const ir::Beam& given = model.beams.at(beam);
+  const auto where = [&]() {
+    return model.source_path + ":" + std::to_string(given.adjustment.omega_limit_loc.line) + ":" +
+           std::to_string(given.adjustment.omega_limit_loc.column) + ": beam '" + given.name + "': omega_limit: auto ";
+  };
+  if (given.adjustment.scope == ir::AdjustmentScope::kJoined)
+    throw InvalidInput(where() + "takes scope beam (the estimate covers one beam's modes), got scope joined");
+  // The beam's every mode, unadjusted: the limit far above its fastest root.
+  ir::Beam b = given;
+  b.adjustment.omega_limit_auto = false;
+  b.adjustment.policy = ir::AdjustmentPolicy::kNone;
+  BeamAnalysisOptions every_mode = options;
+  every_mode.modes_kept_by_cap = false;
+  const BeamPart part = analyse_beam(b, model.gravity, every_mode);
+  if (!part.basis.complete)
+    throw InvalidInput(where() + "needs every mode of the beam: it has " + std::to_string(part.system.M.rows()) +
+                       " DOFs, beyond the dense modal analysis (" + std::to_string(options.dense_limit) +
+                       "); give omega_limit in rad/s");
+  const ComplianceChangeEstimator estimator(part.system.M, part.system.K, part.system.C, part.basis, part.original);
+  std::vector<ComplianceChangeEstimator::Point> points;
+  for (const Place& place : places(model, {}))
+    if (place.beam == static_cast<int>(beam))
+      for (const double s : positions(place, part.system))
+        points.push_back(estimator.point({deflection_weights(part.system, s), place.series, place.omega}));
+  ir::Adjustment adjustment = given.adjustment;
+  adjustment.omega_limit_auto = false;
+  const auto largest = [&](double omega_limit) {
+    adjustment.omega_limit = omega_limit;
+    const AdjustedModes adjusted = adjust_modes(part.original, adjustment);
+    double worst = 0.0;
+    for (const auto& point : points) {
+      const ComplianceChange change = estimator.evaluate(point, adjusted);
+      worst = std::max({worst, change.static_change, change.change});
+    }
+    return worst;
+  };
+  double fastest = 0.0;
+  for (const ModalDynamics& mode : part.original) fastest = std::max(fastest, fastest_root(mode));
+  const double tolerance = given.adjustment.tolerance;
+  // Above the fastest root nothing is capped; what is left is the damping floor's.
+  const double top = 1.01 * fastest;
+  if (const double floor_only = largest(top); floor_only > tolerance)
+    throw InvalidInput(where() + "no limit meets tolerance " + std::to_string(tolerance) +
+                       ": the damping floor zeta_min alone changes the receptance by " + std::to_string(floor_only) +
+                       "; lower zeta_min or raise the tolerance");
+  // A log grid down from the top: the lowest grid point from which every
+  // higher one meets the tolerance (the estimate need not fall monotonically
+  // with the limit), then bisection towards the grid point below it.
+  const double bottom = 0.5 * part.basis.omega[0];
+  constexpr int kPerDecade = 40;
+  const int count = std::max(2, static_cast<int>(std::ceil(kPerDecade * std::log10(top / bottom))));
+  const double ratio = std::pow(top / bottom, 1.0 / count);
+  double pass = top, fail = 0.0;
+  for (int k = 1; k <= count; ++k) {
+    const double omega = top / std::pow(ratio, k);
+    if (largest(omega) > tolerance) {
+      fail = omega;
+      break;
+    }
+    pass = omega;
+  }
+  if (fail == 0.0) return pass;  // every limit down to half the lowest mode meets it
+  constexpr int kBisections = 40;
+  for (int k = 0; k < kBisections; ++k) {
+    const double mid = std::sqrt(pass * fail);
+    (largest(mid) > tolerance ? fail : pass) = mid;
+  }
+  return pass;
 }
 
 std::string adjustment_notice(const AdjustmentEstimate& estimate, const ir::Model& model) {

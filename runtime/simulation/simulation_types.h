@@ -142,6 +142,14 @@ struct AdjustmentEstimate {
   std::vector<AdjustmentEstimatePoint> points;
   int largest = -1;        // index into points of the largest estimate, -1 when none
   double max = 0.0;        // points[largest].estimate, 0 when none
+  /// Every adjusted beam's omega_limit (rad/s), and whether it was chosen
+  /// for a tolerance (omega_limit: auto).
+  struct Limit {
+    std::string beam;
+    double omega_limit = 0.0;
+    bool chosen = false;
+  };
+  std::vector<Limit> limits;
   /// Adjusted beams the estimate does not cover, each with the reason
   /// ("'wire': scope joined").
   std::vector<std::string> not_estimated;

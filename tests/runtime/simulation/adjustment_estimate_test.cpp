@@ -6,9 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 #include "frontend/parse_model.h"
+#include "ir/model_error.h"
 #include "runtime/damping/beam_model.h"
 #include "runtime/simulation/adjustment_estimate.h"
 #include "runtime/simulation/assembled_model.h"
@@ -20,7 +23,7 @@ namespace {
 // has cond ~1e9; the estimate's point compliance comes from a sparse LDLT solve.
 constexpr double kStaticRel = 1e-7;
 
-std::string beam_text(const std::string& policy) {
+std::string beam_text(const std::string& policy, const std::string& limit = "omega_limit: 2.0e4") {
   return "model: estimate_beam\n"
          "gravity: [0, 0]\n"
          "beams:\n"
@@ -33,8 +36,7 @@ std::string beam_text(const std::string& policy) {
          "    supports: [{at: 0.0, type: pinned}, {at: 1.0, type: pinned}]\n"
          "    damping: {rayleigh: {alpha: 3.0e-3, beta: 1.5e-4}}\n"
          "    loads: [{type: point, at: 0.3, value: -10.0}]\n"
-         "    adjustment: {omega_limit: 2.0e4, margin: 0.1, zeta_min: 0.05, policy: " +
-         policy + "}\n";
+         "    adjustment: {" + limit + ", margin: 0.1, zeta_min: 0.05, policy: " + policy + "}\n";
 }
 
 /// The deflection at s of the static state under the model's loads, original or adjusted.
@@ -97,6 +99,47 @@ TEST(AdjustmentEstimate, TheNoticeNamesThePlaceTheFigureAndTheRemedy) {
             "raise omega_limit or use policy: mass (docs/damping-adjustment.md, \"The accuracy estimate\")");
   estimate.max = estimate.points[0].estimate = kAdjustmentNoticeThreshold;
   EXPECT_TRUE(adjustment_notice(estimate, model.ir()).empty());  // above 1 % only
+}
+
+// omega_limit: auto against the adjusted model's static answer: at the chosen
+// limit the deflection under the load changes by at most the tolerance, 2 %
+// below it by more (the cap's static change grows as the limit falls).
+TEST(AdjustmentEstimate, AutoChoosesTheLowestLimitWhoseStaticChangeMeetsTheTolerance) {
+  constexpr double kTolerance = 1e-4;
+  const AssembledModel model(
+      frontend::parse_model_text(beam_text("cap", "omega_limit: auto, tolerance: 1.0e-4"), "auto.yaml"), nullptr);
+  const ir::Adjustment& chosen = model.ir().beams.at(0).adjustment;
+  EXPECT_TRUE(chosen.omega_limit_auto);
+  const double limit = chosen.omega_limit;
+  const auto change_at = [&](double omega_limit) {
+    std::ostringstream text;
+    text << std::setprecision(17) << "omega_limit: " << omega_limit;
+    const AssembledModel given(frontend::parse_model_text(beam_text("cap", text.str()), "given.yaml"), nullptr);
+    const double w = static_deflection(given, false, 0.3), w_adj = static_deflection(given, true, 0.3);
+    return std::abs(w_adj - w) / std::abs(w);
+  };
+  EXPECT_LE(change_at(limit), kTolerance * (1.0 + kStaticRel));
+  EXPECT_GT(change_at(0.98 * limit), kTolerance);
+  const AdjustmentEstimate estimate = estimate_adjustment(model, {});
+  ASSERT_EQ(estimate.limits.size(), 1u);
+  EXPECT_TRUE(estimate.limits[0].chosen);
+  EXPECT_EQ(estimate.limits[0].omega_limit, limit);
+}
+
+TEST(AdjustmentEstimate, ToleranceGoesWithAutoAndBelowOne) {
+  try {
+    frontend::parse_model_text(beam_text("cap", "omega_limit: 2.0e4, tolerance: 0.01"), "t.yaml");
+    FAIL() << "a tolerance with a given omega_limit was accepted";
+  } catch (const ir::ModelError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("t.yaml:13:", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("tolerance goes with omega_limit: auto"), std::string::npos) << e.what();
+  }
+  try {
+    frontend::parse_model_text(beam_text("cap", "omega_limit: auto, tolerance: 1.5"), "t.yaml");
+    FAIL() << "a tolerance of 1.5 was accepted";
+  } catch (const ir::ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("must be < 1, a relative change (got 1.5)"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
