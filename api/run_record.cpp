@@ -7,6 +7,31 @@
 
 namespace mbfe {
 
+nlohmann::json adjustment_estimate_json(const runtime::AdjustmentEstimate& estimate) {
+  nlohmann::json points = nlohmann::json::array();
+  for (const runtime::AdjustmentEstimatePoint& p : estimate.points)
+    points.push_back({{"what", p.what},
+                      {"beam", p.beam},
+                      {"s", p.s},
+                      {"moving", p.moving},
+                      {"series_compliance", p.series_compliance},
+                      {"omega", p.omega},
+                      {"compliance", p.compliance},
+                      {"static_change", p.static_change},
+                      {"dynamic_change", p.dynamic_change},
+                      {"changed_share", p.changed_share},
+                      {"estimate", p.estimate}});
+  nlohmann::json j = {{"points", points}, {"max", estimate.max}};
+  j["where"] = estimate.largest >= 0 ? nlohmann::json(estimate.points[static_cast<std::size_t>(estimate.largest)].what)
+                                     : nlohmann::json();
+  j["not_estimated"] = estimate.not_estimated;
+  nlohmann::json limits = nlohmann::json::array();
+  for (const runtime::AdjustmentEstimate::Limit& l : estimate.limits)
+    limits.push_back({{"beam", l.beam}, {"omega_limit", l.omega_limit}, {"chosen", l.chosen}});
+  j["omega_limits"] = limits;
+  return j;
+}
+
 nlohmann::json run_record(const Model& model, const runtime::SimulationRequest& request,
                           const runtime::SimulationReport& report, const runtime::OutputLayout& layout,
                           std::size_t rows) {
@@ -38,6 +63,7 @@ nlohmann::json run_record(const Model& model, const runtime::SimulationRequest& 
   for (const runtime::LinkSlackTally& l : report.links)
     links.push_back({{"name", l.name}, {"slackenings", l.slackenings}, {"time_slack", l.time_slack}});
   if (!links.empty()) j["links"] = links;
+  if (report.adjustment_estimate) j["adjustment_estimate"] = adjustment_estimate_json(*report.adjustment_estimate);
   return j;
 }
 

@@ -14,10 +14,18 @@ namespace mbfe {
 
 /// {"mbfe", "model": {name, file, sha256}, "integrator", "step", "t_end",
 /// "variant", "columns": [{name, unit}], "rows", "status", "message",
-/// "steps", "t_reached", "wall_seconds", "newton"?, "springs"?, "links"?}.
+/// "steps", "t_reached", "wall_seconds", "newton"?, "springs"?, "links"?,
+/// "adjustment_estimate"? (adjusted runs: adjustment_estimate_json)}.
 nlohmann::json run_record(const Model& model, const runtime::SimulationRequest& request,
                           const runtime::SimulationReport& report, const runtime::OutputLayout& layout,
                           std::size_t rows);
+
+/// {"points": [{what, beam, s (m), moving, series_compliance (m/N), omega
+/// (rad/s), compliance (m/N), static_change, dynamic_change, changed_share,
+/// estimate}], "max", "where" (the
+/// what of the largest, null without points), "not_estimated": [text],
+/// "omega_limits": [{beam, omega_limit (rad/s), chosen (omega_limit: auto)}]}.
+nlohmann::json adjustment_estimate_json(const runtime::AdjustmentEstimate& estimate);
 
 /// Writes `record` to results_path + ".json", unless the results went to a
 /// device or a pipe (--out /dev/null: no file to describe, and no

@@ -225,11 +225,26 @@ void ModelParser::parse_beam_loads(const MapView& beam_view, const Field& field,
 }
 
 Adjustment ModelParser::parse_adjustment(const MapView& view) {
-  view.allow({"omega_limit", "margin", "zeta_min", "policy", "scope"});
+  view.allow({"omega_limit", "margin", "zeta_min", "policy", "scope", "tolerance"});
   Adjustment adjustment;
   adjustment.present = true;
   adjustment.loc = view.loc();
-  adjustment.omega_limit = view.positive(view.require("omega_limit"));
+  const Field& omega_limit = view.require("omega_limit");
+  adjustment.omega_limit_loc = omega_limit.value_loc;
+  if (omega_limit.value.IsScalar() && omega_limit.value.Scalar() == "auto") {
+    adjustment.omega_limit_auto = true;
+  } else {
+    adjustment.omega_limit = view.positive(omega_limit);
+  }
+  if (const Field* tolerance = view.find("tolerance")) {
+    if (!adjustment.omega_limit_auto)
+      view.fail(tolerance->key_loc, view.prefixed("tolerance goes with omega_limit: auto (it chooses the limit); "
+                                                  "omega_limit is given here"));
+    adjustment.tolerance = view.positive(*tolerance);
+    if (adjustment.tolerance >= 1.0)
+      view.fail(tolerance->value_loc, view.prefixed(view.what(*tolerance) + " must be < 1, a relative change (got " +
+                                                    shown(tolerance->value.Scalar()) + ")"));
+  }
   if (const Field* margin = view.find("margin")) {
     adjustment.margin = view.number_at_least(*margin, 0.0);
   }

@@ -173,7 +173,12 @@ enum class AdjustmentScope { kBeam, kJoined };
 /// Modal adjustment of damping (Section 6 of the paper; docs/damping-adjustment.md).
 struct Adjustment {
   bool present = false;          // the beam has an `adjustment:` block
-  double omega_limit = 0.0;      // rad/s
+  double omega_limit = 0.0;      // rad/s (with omega_limit_auto: chosen when the model is assembled)
+  /// `omega_limit: auto`: the lowest limit whose accuracy estimate stays
+  /// below `tolerance` (docs/damping-adjustment.md, "Choosing omega_limit for a tolerance").
+  bool omega_limit_auto = false;
+  double tolerance = 0.01;       // the largest estimate allowed with omega_limit_auto (relative)
+  SourceLoc omega_limit_loc;     // the omega_limit value, for messages
   double margin = 0.1;           // the paper's l
   double zeta_min = 0.0;         // damping-ratio floor for oscillatory modes
   AdjustmentPolicy policy = AdjustmentPolicy::kCap;  // a block without `policy:` parses as kMass

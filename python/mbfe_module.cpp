@@ -53,6 +53,7 @@ struct Result {
   long steps = 0;
   double t_reached = 0.0, wall_seconds = 0.0;
   py::list springs, links;
+  py::object adjustment_estimate = py::none();
 };
 
 /// `text` as a Python str, invalid UTF-8 (a file name's bytes) as U+FFFD: a
@@ -141,6 +142,44 @@ py::list link_tallies(const rt::SimulationReport& report) {
   return out;
 }
 
+/// The run's adjustment estimate as a dict (the sidecar's
+/// "adjustment_estimate"), None for a run of the original model.
+py::object estimate_of(const rt::SimulationReport& report) {
+  if (!report.adjustment_estimate) return py::none();
+  const rt::AdjustmentEstimate& e = *report.adjustment_estimate;
+  py::list points;
+  for (const rt::AdjustmentEstimatePoint& p : e.points) {
+    py::dict d;
+    d["what"] = p.what;
+    d["beam"] = p.beam;
+    d["s"] = p.s;
+    d["moving"] = p.moving;
+    d["series_compliance"] = p.series_compliance;
+    d["omega"] = p.omega;
+    d["compliance"] = p.compliance;
+    d["static_change"] = p.static_change;
+    d["dynamic_change"] = p.dynamic_change;
+    d["changed_share"] = p.changed_share;
+    d["estimate"] = p.estimate;
+    points.append(d);
+  }
+  py::dict out;
+  out["points"] = points;
+  out["max"] = e.max;
+  out["where"] = e.largest >= 0 ? py::object(py::str(e.points[static_cast<std::size_t>(e.largest)].what)) : py::none();
+  out["not_estimated"] = e.not_estimated;
+  py::list limits;
+  for (const rt::AdjustmentEstimate::Limit& l : e.limits) {
+    py::dict d;
+    d["beam"] = l.beam;
+    d["omega_limit"] = l.omega_limit;
+    d["chosen"] = l.chosen;
+    limits.append(d);
+  }
+  out["omega_limits"] = limits;
+  return out;
+}
+
 Result result_of(const Columns& rows, const rt::SimulationReport& report) {
   Result out;
   out.columns = rows.columns;
@@ -159,6 +198,7 @@ Result result_of(const Columns& rows, const rt::SimulationReport& report) {
   out.wall_seconds = report.run.wall_seconds;
   out.springs = tallies(report);
   out.links = link_tallies(report);
+  out.adjustment_estimate = estimate_of(report);
   return out;
 }
 
@@ -240,6 +280,9 @@ PYBIND11_MODULE(mbfe, module) {
       .def_readonly("notices", &Result::notices)
       .def_readonly("springs", &Result::springs, "per slider_spring: name, lift_offs, time_off")
       .def_readonly("links", &Result::links, "per link that can go slack: name, slackenings, time_slack")
+      .def_readonly("adjustment_estimate", &Result::adjustment_estimate,
+                    "adjusted runs: what the adjustment changes where forces act (points, max, where, "
+                    "not_estimated; docs/damping-adjustment.md), else None")
       .def_property_readonly("t", [](const Result& r) { return r.arrays.at("t"); })
       .def("__getitem__", [](const Result& r, const std::string& name) {
         const auto it = r.arrays.find(name);
@@ -376,6 +419,7 @@ PYBIND11_MODULE(mbfe, module) {
             d["t_reached"] = r.run.t;
             d["springs"] = tallies(r);
             d["links"] = link_tallies(r);
+            d["adjustment_estimate"] = estimate_of(r);
             return d;
           },
           "the run so far: status, message, steps, tallies");

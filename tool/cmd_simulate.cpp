@@ -4,10 +4,12 @@
 #include <fstream>
 #include <memory>
 #include <iostream>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "api/mbfe.h"
+#include "tool/adjustment_check.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "tool/file_checks.h"
@@ -70,6 +72,12 @@ Options:
   --vtk-scale S      deflections drawn S times enlarged (default 1)
   --vtk-frames N     at most N frames, evenly spaced in time (default 200,
                      at most 10000)
+  --check-adjustment T
+                     after an adjusted run, run its first T s again with the
+                     original model (generalized_alpha, at least 2000 steps)
+                     and report how far the contact forces and displacements
+                     are from it (stderr, and "adjustment_check" in the
+                     sidecar); docs/damping-adjustment.md
   --strict           an initial state that violates the contacts is an error
                      (exit 2) instead of being projected onto them
   --quiet            no progress or cache messages on stderr
@@ -85,6 +93,7 @@ Examples:
   mbfe simulate models/double_pendulum.yaml --integrator rk4 --step 1e-3 --t-end 2 --out pendulum.csv
   mbfe simulate models/paper_platform.yaml --integrator forward_euler --step 1.4e-5 --t-end 1 --out platform.csv
   mbfe simulate models/bridge_moving_mass.yaml --probe deck@10 --out crossing.csv
+  mbfe simulate models/vehicle_bridge_30m.yaml --integrator rk4 --step 1e-3 --check-adjustment 0.2 --out v.csv
 )";
 
 std::vector<std::string> split_commas(const std::string& text) {
@@ -187,7 +196,7 @@ void print_tallies(const runtime::SimulationReport& report, const std::optional<
 
 int cmd_simulate(const Args& args) {
   const ParsedArgs parsed(args, {"integrator", "step", "t-end", "out", "every", "adjust", "probe", "rho-inf", "formulation", "start",
-                           "vtk", "vtk-scale", "vtk-frames"},
+                           "vtk", "vtk-scale", "vtk-frames", "check-adjustment"},
                           {"help", "quiet", "strict"});
   if (parsed.has("help")) {
     std::cout << kHelp;
@@ -236,10 +245,29 @@ int cmd_simulate(const Args& args) {
   if (parsed.has("formulation") && model.kind() != runtime::ModelKind::kCoupled)
     throw UsageError("--formulation applies to coupled models (bodies, beams and contacts) only");
   model.assembled();  // a beam the analysis refuses is bad input before the output file is opened
+  std::optional<double> check_until;
+  if (parsed.has("check-adjustment")) {
+    const double t = parsed.number("check-adjustment").value_or(NAN);
+    if (!(t > 0.0) || !(t <= request.t_end)) {
+      std::ostringstream text;
+      text << "--check-adjustment: expected a time in s in (0, t_end = " << request.t_end << "], got '"
+           << parsed.value("check-adjustment").value_or("") << "'";
+      throw UsageError(text.str());
+    }
+    if (!model.assembled().resolve_adjusted(request.adjust))
+      throw UsageError("--check-adjustment compares an adjusted run with the original model; this run is not "
+                       "adjusted (no active adjustment block, or --adjust off)");
+    check_until = t;
+  }
 
   const bool quiet = parsed.has("quiet");
   ResultsOutput csv(out.value_or(""));
-  ResultsObserver observer(csv);
+  ResultsObserver results(csv);
+  // With --check-adjustment the rows up to T are also kept for the comparison.
+  RowsUpTo kept(check_until.value_or(0.0));
+  TeeObserver results_and_kept(results, kept);
+  runtime::SimulationObserver& observer_used = check_until ? static_cast<runtime::SimulationObserver&>(results_and_kept)
+                                                           : static_cast<runtime::SimulationObserver&>(results);
   runtime::SimulationReport report;
   {
     // Ctrl-C, SIGTERM, SIGHUP: the run stops before its next step, whole
@@ -253,10 +281,10 @@ int cmd_simulate(const Args& args) {
     };
     try {
       if (vtk) {
-        TeeObserver both(observer, *vtk);
+        TeeObserver both(observer_used, *vtk);
         report = model.simulate(request, both, keep_going);
       } else {
-        report = model.simulate(request, observer, keep_going);
+        report = model.simulate(request, observer_used, keep_going);
       }
     } catch (...) {
       progress.finish();
@@ -272,7 +300,13 @@ int cmd_simulate(const Args& args) {
       std::cerr << "mbfe: " << vtk->frames_written() << " animation frames in " << *parsed.value("vtk") << "/"
                 << model.ir().name << ".pvd\n";
   }
-  if (out) write_run_record(*out, run_record(model, request, report, observer.layout(), csv.rows()));
+  nlohmann::json record = run_record(model, request, report, results.layout(), csv.rows());
+  if (check_until && report.message.empty()) {
+    const AdjustmentCheck check = check_adjustment(model, request, kept, *check_until);
+    record["adjustment_check"] = adjustment_check_json(check);
+    std::cerr << "mbfe: " << adjustment_check_line(check) << "\n";
+  }
+  if (out) write_run_record(*out, record);
   const runtime::SimulationResult& run = report.run;
   const std::string where = out ? " to " + *out : std::string();
   const std::string variant = report.variant.empty() ? "" : " (" + report.variant + ")";

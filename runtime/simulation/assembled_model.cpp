@@ -4,6 +4,7 @@
 
 #include "runtime/structure/adjusted_structures.h"
 #include "runtime/errors/invalid_input.h"
+#include "runtime/simulation/adjustment_estimate.h"
 
 namespace mbfe::runtime {
 
@@ -35,6 +36,23 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   BeamAnalysisOptions options = beams;
   if (kind_ == ModelKind::kCoupled && options.sparse_modes == 0) options.sparse_modes = kLargeBeamModes;
   if (kind_ == ModelKind::kCoupled) options.modes_kept_by_cap = true;
+  // omega_limit: auto, chosen for its tolerance before the beams are adjusted.
+  for (std::size_t i = 0; i < model_.beams.size(); ++i) {
+    ir::Adjustment& a = model_.beams[i].adjustment;
+    if (!a.present || !a.omega_limit_auto) continue;
+    if (a.policy != ir::AdjustmentPolicy::kNone) {
+      try {
+        a.omega_limit = choose_omega_limit(model_, i, options);
+      } catch (const InvalidInput&) {
+        throw;
+      } catch (const std::invalid_argument& e) {
+        throw InvalidInput(model_.source_path + ": " + e.what());
+      }
+    } else {
+      a.omega_limit = 1.0;  // policy none changes nothing
+    }
+    // omega_limit_auto stays set: the limit was chosen (the run's record says so).
+  }
   try {
     beams_ = analyse_beams(model_, options);
   } catch (const std::invalid_argument& e) {

@@ -14,6 +14,7 @@ namespace {
 
 class BeamRun final : public ModelRun {
  public:
+  bool adjusted() const override { return adjusted_; }
   BeamRun(const AssembledModel& model, const SimulationRequest& request)
       : beams_(model.beams()), state_in_rows_(request.state_in_rows) {
     adjusted_ = model.resolve_adjusted(request.adjust);

@@ -64,6 +64,7 @@ bool second_order_implicit(const IntegratorSpec& spec) {
 
 class CoupledRun final : public ModelRun {
  public:
+  bool adjusted() const override { return adjusted_; }
   CoupledRun(const AssembledModel& model, const SimulationRequest& request) : model_(model), request_(request) {
     index3_ = second_order_implicit(request.integrator);
     // The adjustment exists to widen explicit steps: an implicit integrator runs

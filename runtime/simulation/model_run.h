@@ -32,6 +32,8 @@ class ModelRun {
   /// The driver's options beyond step and end time: the divergence bound.
   const SimulationOptions& options() const { return options_; }
   const std::string& variant() const { return variant_; }
+  /// The run integrates the adjusted beams.
+  virtual bool adjusted() const { return false; }
 
   /// The row at (t, y) into `values` (layout order). When `q` is not null the
   /// full coordinates of the state go there too (q and qd; left empty when

@@ -120,6 +120,41 @@ struct LinkSlackTally {
   bool seen = false;        // a step has been counted (a link slack from the start has not slackened)
 };
 
+/// One place of an adjusted beam where a force acts or a displacement is
+/// read, and what the adjustment changes there (docs/damping-adjustment.md,
+/// "The accuracy estimate").
+struct AdjustmentEstimatePoint {
+  std::string what;   // "contact 'wheel' (slider_spring)", "link 'd3' end a", "point load", "moving load", "probe deck@15"
+  std::string beam;   // the beam's name
+  double s = 0.0;     // m along the beam: the place, or for a moving point the one of the largest change on its path
+  bool moving = false;               // the point travels along the beam (the figures are the largest on its path)
+  double series_compliance = 0.0;    // m/N: 1/k of the spring in series (slider_spring, link), else 0
+  double omega = 0.0;                // rad/s: the force's frequency there (a body on a contact spring), 0 for quasi-static
+  double compliance = 0.0;           // m/N: the original static point compliance e^T K^-1 e at s
+  double static_change = 0.0;        // relative change of the static compliance (c_s + e^T K^-1 e) the adjustment makes
+  double dynamic_change = 0.0;       // relative change of the receptance at omega (over the quasi-static compliance there)
+  double changed_share = 0.0;        // the changed modes' share of the quasi-static compliance at omega
+  double estimate = 0.0;             // max(static_change, dynamic_change)
+};
+
+/// The estimate of an adjusted run, made before its first step.
+struct AdjustmentEstimate {
+  std::vector<AdjustmentEstimatePoint> points;
+  int largest = -1;        // index into points of the largest estimate, -1 when none
+  double max = 0.0;        // points[largest].estimate, 0 when none
+  /// Every adjusted beam's omega_limit (rad/s), and whether it was chosen
+  /// for a tolerance (omega_limit: auto).
+  struct Limit {
+    std::string beam;
+    double omega_limit = 0.0;
+    bool chosen = false;
+  };
+  std::vector<Limit> limits;
+  /// Adjusted beams the estimate does not cover, each with the reason
+  /// ("'wire': scope joined").
+  std::vector<std::string> not_estimated;
+};
+
 struct SimulationReport {
   SimulationResult run;  // status, steps, time reached, wall time
   /// What was integrated, for messages: "adjusted damping", "original
@@ -134,6 +169,9 @@ struct SimulationReport {
   std::vector<SpringContactTally> springs;
   /// Coupled models: slackenings and time slack of each link that can go slack.
   std::vector<LinkSlackTally> links;
+  /// Adjusted runs: what the adjustment changes where forces act (absent for
+  /// a run of the original model).
+  std::optional<AdjustmentEstimate> adjustment_estimate;
 };
 
 /// "completed", "diverged", "interrupted" or "failed": how a report names

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "runtime/errors/invalid_input.h"
+#include "runtime/simulation/adjustment_estimate.h"
 #include "runtime/simulation/model_run.h"
 #include "runtime/simulation/run_diagnosis.h"
 #include "runtime/simulation/time_expressions.h"
@@ -35,12 +36,17 @@ Simulator::Simulator(const AssembledModel& model, const SimulationRequest& reque
     throw InvalidInput(e.what());
   }
   values_.resize(run_->layout().columns.size());
+  notices_ = run_->notices();
+  if (run_->adjusted()) {
+    estimate_ = estimate_adjustment(model, request.probes);
+    if (std::string line = adjustment_notice(*estimate_, model.ir()); !line.empty()) notices_.push_back(std::move(line));
+  }
 }
 
 Simulator::~Simulator() = default;
 
 const OutputLayout& Simulator::layout() const { return run_->layout(); }
-const std::vector<std::string>& Simulator::notices() const { return run_->notices(); }
+const std::vector<std::string>& Simulator::notices() const { return notices_; }
 const std::string& Simulator::variant() const { return run_->variant(); }
 double Simulator::time() const { return steps_->t(); }
 double Simulator::step() const { return steps_->step_size(); }
@@ -99,6 +105,7 @@ SimulationReport Simulator::report() {
   report.run.wall_seconds = wall_seconds_;
   report.variant = run_->variant();
   run_->fill(report);
+  report.adjustment_estimate = estimate_;
   if (report.run.status == SimulationStatus::kCompleted && row_fault_.empty()) return report;
   if (report.run.status != SimulationStatus::kInterrupted && row_fault_.empty()) {
     // A load or motion of the bodies that is no longer finite broke the run, not the integrator.

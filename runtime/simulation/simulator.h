@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,7 +52,8 @@ class Simulator {
 
   /// The output columns and their units.
   const OutputLayout& layout() const;
-  /// What the user should hear about the start (a projection onto the contacts).
+  /// What the user should hear about the start (a projection onto the
+  /// contacts; an adjustment estimate above 1 %, runtime/simulation/adjustment_estimate.h).
   const std::vector<std::string>& notices() const;
   /// What is integrated ("adjusted damping, partitioned formulation, ...").
   const std::string& variant() const;
@@ -110,6 +112,8 @@ class Simulator {
   Eigen::VectorXd q_, qd_;
   double wall_seconds_ = 0.0;
   std::string row_fault_;  // a fault met while evaluating a row, kept for the report
+  std::vector<std::string> notices_;
+  std::optional<AdjustmentEstimate> estimate_;  // adjusted runs
 };
 
 }  // namespace mbfe::runtime

@@ -58,6 +58,21 @@ class SameAsTheCommandLine(unittest.TestCase):
         np.testing.assert_array_equal(run["force_tyre"], rows[:, header.index("force_tyre")])
         self.assertEqual(run.springs[0]["name"], "tyre")
 
+    def test_adjustment_estimate_as_in_the_sidecar(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "c.csv")
+            r = cli("simulate", model("bridge_moving_mass.yaml"), "--t-end", "0.01", "--quiet", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(out + ".json") as f:
+                expected = json.load(f)["adjustment_estimate"]
+        m = mbfe.load(model("bridge_moving_mass.yaml"))
+        run = m.simulate(t_end=0.01)
+        self.assertEqual(run.adjustment_estimate["max"], expected["max"])
+        self.assertEqual(run.adjustment_estimate["where"], expected["where"])
+        self.assertEqual(run.adjustment_estimate["points"][0]["estimate"], expected["points"][0]["estimate"])
+        self.assertTrue(any("adjustment estimate:" in n for n in run.notices))  # 4.3 %, above 1 %
+        self.assertIsNone(m.simulate(t_end=0.01, adjust=False).adjustment_estimate)
+
     def test_npy_output_reads_back_as_the_run(self):
         with tempfile.TemporaryDirectory() as tmp:
             out = os.path.join(tmp, "c.npy")
