@@ -54,6 +54,10 @@ struct LoadOptions {
   /// the price of generating the sources on every load (what `mbfe sweep`
   /// does for its points).
   bool cache_by_sources = false;
+  /// Keep the modes a large beam's cap keeps (spectrum slicing, seconds per
+  /// beam) in the cache folder and reuse them (api/modal_cache.h), unless
+  /// beams.modes_store already names a store.
+  bool cache_modes = true;
 };
 
 /// M(q), F(q, q'), Q(q, q', t) of the rigid part at one state and, for a model

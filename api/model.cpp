@@ -2,6 +2,7 @@
 
 #include "api/mbfe.h"
 
+#include "api/modal_cache.h"
 #include "api/solver_cache.h"
 #include "frontend/parse_model.h"
 #include "ir/coordinate_layout.h"
@@ -63,6 +64,8 @@ Model Model::make(ir::Model model, const mbfe_model_v1* solver, std::string libr
   shared->solver_library = std::move(library);
   shared->compiled_now = compiled_now;
   shared->beam_options = options.beams;
+  if (options.cache_modes && !shared->beam_options.modes_store)
+    shared->beam_options.modes_store = disk_modal_store(options.quiet);
   return Model(std::move(shared));
 }
 

@@ -1,15 +1,13 @@
 #include "runtime/damping/beam_model.h"
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "runtime/modal/modal_analysis.h"
 
 namespace mbfe::runtime {
-
-static_assert(BeamAnalysisOptions{}.slice_modes == ModalOptions{}.slice_modes,
-              "the slicing's default modes per run, stated in beam_analysis_options.h");
 
 BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamAnalysisOptions& options) {
   BeamPart part;
@@ -33,7 +31,15 @@ BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamA
     sliced.up_to_omega = adj.omega_limit;
     sliced.slice_modes = options.slice_modes;
     try {
-      part.basis = modal_analysis(part.system, sliced);
+      std::string inputs;
+      if (options.modes_store) {
+        inputs = sliced_modes_inputs(part.system, sliced);
+        if (std::optional<ModalBasis> kept = options.modes_store->find(inputs, n)) part.basis = std::move(*kept);
+      }
+      if (part.basis.omega.size() == 0) {
+        part.basis = modal_analysis(part.system, sliced);
+        if (options.modes_store) options.modes_store->keep(inputs, part.basis);
+      }
     } catch (const std::exception& e) {
       // The original model does not need these modes: it still runs.
       part.kept_modes_unavailable = e.what();
