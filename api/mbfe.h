@@ -118,6 +118,12 @@ class Model {
   /// runtime/simulation/assembled_model.h). @throws runtime::InvalidInput for
   /// a beam the analysis refuses.
   const runtime::AssembledModel& assembled() const;
+  /// The model assembled for a run with `adjust` (SimulationRequest::adjust):
+  /// a run of a coupled model's original beams (false) does not
+  /// need the modes a large beam's cap keeps, and gets a model assembled
+  /// without them (once) unless assembled() was built already. Otherwise
+  /// assembled(). @throws as assembled().
+  const runtime::AssembledModel& assembled_for(std::optional<bool> adjust) const;
 
   /// M, F, Q and the constraints at `state`; driven coordinates and rates are
   /// the motion's at state.t. @throws runtime::InvalidInput for

@@ -26,6 +26,8 @@ struct Model::Shared {
   // evaluate() does not need it.
   mutable std::mutex assembled_mutex;
   mutable std::shared_ptr<const runtime::AssembledModel> assembled;
+  // Assembled for runs of the original model only (assembled_for(false)).
+  mutable std::shared_ptr<const runtime::AssembledModel> original_only;
 };
 
 Model Model::make(ir::Model model, const mbfe_model_v1* solver, std::string library, bool compiled_now,
@@ -119,6 +121,18 @@ const runtime::AssembledModel& Model::assembled() const {
   return *shared_->assembled;
 }
 
+const runtime::AssembledModel& Model::assembled_for(std::optional<bool> adjust) const {
+  if (adjust.value_or(true) || shared_->kind != runtime::ModelKind::kCoupled) return assembled();
+  std::lock_guard<std::mutex> lock(shared_->assembled_mutex);
+  if (shared_->assembled) return *shared_->assembled;
+  if (!shared_->original_only) {
+    runtime::BeamAnalysisOptions options = shared_->beam_options;
+    options.original_only = true;
+    shared_->original_only = std::make_shared<const runtime::AssembledModel>(shared_->ir, shared_->solver, options);
+  }
+  return *shared_->original_only;
+}
+
 namespace {
 
 Eigen::VectorXd state_vector(const std::vector<double>& values, int n, const char* name, const char* what) {
@@ -201,7 +215,7 @@ runtime::SimulationRequest Model::request() const {
 runtime::SimulationReport Model::simulate(const runtime::SimulationRequest& request,
                                           runtime::SimulationObserver& observer,
                                           const runtime::StepMonitor& keep_going) const {
-  return runtime::simulate(assembled(), request, observer, keep_going);
+  return runtime::simulate(assembled_for(request.adjust), request, observer, keep_going);
 }
 
 }  // namespace mbfe

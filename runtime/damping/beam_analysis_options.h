@@ -23,6 +23,10 @@ struct BeamAnalysisOptions {
   bool modes_kept_by_cap = false;
   /// Modes per Lanczos run of that slicing (SlicedModalOptions::slice_modes).
   int slice_modes = SlicedModalOptions{}.slice_modes;
+  /// For a coupled model whose runs all use the original beams (--adjust
+  /// off): its large beams skip the modes their cap keeps (the slicing, the
+  /// expensive part of the set-up), and adjusted runs of it are refused.
+  bool original_only = false;
   /// Where the sliced modes are looked up before slicing and kept after
   /// (modal_basis_store.h); null = always slice. The API gives its disk cache.
   std::shared_ptr<const ModalBasisStore> modes_store;

@@ -200,5 +200,38 @@ TEST_F(ModalCache, SecondLoadUsesTheCacheAndGivesTheSameBits) {
   EXPECT_LT(other.assembled().beams().beams[1].basis.omega.size(), first.assembled().beams().beams[1].basis.omega.size());
 }
 
+// Accelerations of the original model at a seeded random state.
+Eigen::VectorXd original_accelerations(const runtime::AssembledModel& assembled) {
+  auto dynamics = assembled.make_dynamics(false);
+  Eigen::VectorXd q, qd, a, lambda;
+  assembled.initial_coordinates(q, qd);
+  std::mt19937 rng(20261125);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = dynamics->nb(); i < q.size(); ++i) {
+    q[i] = 1e-3 * u(rng);
+    qd[i] = 1e-2 * u(rng);
+  }
+  dynamics->evaluate(0.0, q, qd);
+  dynamics->solve_augmented(0.0, a, lambda);
+  return a;
+}
+
+TEST_F(ModalCache, OriginalRunsDoNotComputeTheKeptModes) {
+  auto store = std::make_shared<CountingStore>(cache().string());
+  const Model model = load(store);
+  const runtime::AssembledModel& original = model.assembled_for(false);
+  EXPECT_EQ(store->hits + store->misses, 0) << "an original run asked for the kept modes";
+  EXPECT_THROW(original.make_dynamics(true), runtime::InvalidInput);
+  // The same original model as the whole assembly's, to the bit.
+  const Eigen::VectorXd lazy = original_accelerations(original);
+  const runtime::AssembledModel& whole = model.assembled_for(true);
+  EXPECT_EQ(store->misses, 2);
+  const Eigen::VectorXd eager = original_accelerations(whole);
+  ASSERT_EQ(lazy.size(), eager.size());
+  EXPECT_EQ(std::memcmp(lazy.data(), eager.data(), sizeof(double) * lazy.size()), 0);
+  // Once the whole assembly exists, original runs use it too.
+  EXPECT_EQ(&model.assembled_for(false), &whole);
+}
+
 }  // namespace
 }  // namespace mbfe
