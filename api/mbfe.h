@@ -54,6 +54,10 @@ struct LoadOptions {
   /// the price of generating the sources on every load (what `mbfe sweep`
   /// does for its points).
   bool cache_by_sources = false;
+  /// Keep the modes a large beam's cap keeps (spectrum slicing, seconds per
+  /// beam) in the cache folder and reuse them (api/modal_cache.h), unless
+  /// beams.modes_store already names a store.
+  bool cache_modes = true;
 };
 
 /// M(q), F(q, q'), Q(q, q', t) of the rigid part at one state and, for a model
@@ -114,6 +118,12 @@ class Model {
   /// runtime/simulation/assembled_model.h). @throws runtime::InvalidInput for
   /// a beam the analysis refuses.
   const runtime::AssembledModel& assembled() const;
+  /// The model assembled for a run with `adjust` (SimulationRequest::adjust):
+  /// a run of a coupled model's original beams (false) does not
+  /// need the modes a large beam's cap keeps, and gets a model assembled
+  /// without them (once) unless assembled() was built already. Otherwise
+  /// assembled(). @throws as assembled().
+  const runtime::AssembledModel& assembled_for(std::optional<bool> adjust) const;
 
   /// M, F, Q and the constraints at `state`; driven coordinates and rates are
   /// the motion's at state.t. @throws runtime::InvalidInput for

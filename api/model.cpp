@@ -2,6 +2,7 @@
 
 #include "api/mbfe.h"
 
+#include "api/modal_cache.h"
 #include "api/solver_cache.h"
 #include "frontend/parse_model.h"
 #include "ir/coordinate_layout.h"
@@ -25,6 +26,8 @@ struct Model::Shared {
   // evaluate() does not need it.
   mutable std::mutex assembled_mutex;
   mutable std::shared_ptr<const runtime::AssembledModel> assembled;
+  // Assembled for runs of the original model only (assembled_for(false)).
+  mutable std::shared_ptr<const runtime::AssembledModel> original_only;
 };
 
 Model Model::make(ir::Model model, const mbfe_model_v1* solver, std::string library, bool compiled_now,
@@ -63,6 +66,8 @@ Model Model::make(ir::Model model, const mbfe_model_v1* solver, std::string libr
   shared->solver_library = std::move(library);
   shared->compiled_now = compiled_now;
   shared->beam_options = options.beams;
+  if (options.cache_modes && !shared->beam_options.modes_store)
+    shared->beam_options.modes_store = disk_modal_store(options.quiet);
   return Model(std::move(shared));
 }
 
@@ -114,6 +119,18 @@ const runtime::AssembledModel& Model::assembled() const {
     shared_->assembled =
         std::make_shared<const runtime::AssembledModel>(shared_->ir, shared_->solver, shared_->beam_options);
   return *shared_->assembled;
+}
+
+const runtime::AssembledModel& Model::assembled_for(std::optional<bool> adjust) const {
+  if (adjust.value_or(true) || shared_->kind != runtime::ModelKind::kCoupled) return assembled();
+  std::lock_guard<std::mutex> lock(shared_->assembled_mutex);
+  if (shared_->assembled) return *shared_->assembled;
+  if (!shared_->original_only) {
+    runtime::BeamAnalysisOptions options = shared_->beam_options;
+    options.original_only = true;
+    shared_->original_only = std::make_shared<const runtime::AssembledModel>(shared_->ir, shared_->solver, options);
+  }
+  return *shared_->original_only;
 }
 
 namespace {
@@ -198,7 +215,7 @@ runtime::SimulationRequest Model::request() const {
 runtime::SimulationReport Model::simulate(const runtime::SimulationRequest& request,
                                           runtime::SimulationObserver& observer,
                                           const runtime::StepMonitor& keep_going) const {
-  return runtime::simulate(assembled(), request, observer, keep_going);
+  return runtime::simulate(assembled_for(request.adjust), request, observer, keep_going);
 }
 
 }  // namespace mbfe

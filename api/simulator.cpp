@@ -5,7 +5,7 @@
 namespace mbfe {
 
 Simulator::Simulator(const Model& model, const runtime::SimulationRequest& request)
-    : model_(model), sim_(std::make_unique<runtime::Simulator>(model_.assembled(), request)) {}
+    : model_(model), sim_(std::make_unique<runtime::Simulator>(model_.assembled_for(request.adjust), request)) {}
 Simulator::~Simulator() = default;
 Simulator::Simulator(Simulator&&) noexcept = default;
 Simulator& Simulator::operator=(Simulator&&) noexcept = default;

@@ -244,7 +244,8 @@ int cmd_simulate(const Args& args) {
   }
   if (parsed.has("formulation") && model.kind() != runtime::ModelKind::kCoupled)
     throw UsageError("--formulation applies to coupled models (bodies, beams and contacts) only");
-  model.assembled();  // a beam the analysis refuses is bad input before the output file is opened
+  // A beam the analysis refuses is bad input before the output file is opened.
+  model.assembled_for(request.adjust);
   std::optional<double> check_until;
   if (parsed.has("check-adjustment")) {
     const double t = parsed.number("check-adjustment").value_or(NAN);

@@ -2,6 +2,10 @@
 // when it loads a model (api/mbfe.h LoadOptions), apart from the analysis.
 #pragma once
 
+#include <memory>
+
+#include "runtime/modal/modal_basis_store.h"
+
 namespace mbfe::runtime {
 
 /// How far the modal analysis of a beam goes.
@@ -18,7 +22,14 @@ struct BeamAnalysisOptions {
   /// operators need (a coupled model's time integration).
   bool modes_kept_by_cap = false;
   /// Modes per Lanczos run of that slicing (SlicedModalOptions::slice_modes).
-  int slice_modes = 100;  // ModalOptions{}.slice_modes (beam_model.cpp checks they agree)
+  int slice_modes = SlicedModalOptions{}.slice_modes;
+  /// For a coupled model whose runs all use the original beams (--adjust
+  /// off): its large beams skip the modes their cap keeps (the slicing, the
+  /// expensive part of the set-up), and adjusted runs of it are refused.
+  bool original_only = false;
+  /// Where the sliced modes are looked up before slicing and kept after
+  /// (modal_basis_store.h); null = always slice. The API gives its disk cache.
+  std::shared_ptr<const ModalBasisStore> modes_store;
 };
 
 }  // namespace mbfe::runtime

@@ -35,7 +35,7 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   // adjustment can be built from them is checked below.
   BeamAnalysisOptions options = beams;
   if (kind_ == ModelKind::kCoupled && options.sparse_modes == 0) options.sparse_modes = kLargeBeamModes;
-  if (kind_ == ModelKind::kCoupled) options.modes_kept_by_cap = true;
+  if (kind_ == ModelKind::kCoupled && !options.original_only) options.modes_kept_by_cap = true;
   // omega_limit: auto, chosen for its tolerance before the beams are adjusted.
   for (std::size_t i = 0; i < model_.beams.size(); ++i) {
     ir::Adjustment& a = model_.beams[i].adjustment;
@@ -70,6 +70,11 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
       adjustment_unavailable_ = e.what();
       adjustment_unavailable_at_ = model_.beams[e.beam].adjustment.loc;
     }
+  }
+  if (options.original_only && beams_.any_adjustment) {
+    adjustment_unavailable_ = "model '" + model_.name + "' was assembled for runs of the original model only";
+    for (const ir::Beam& b : model_.beams)
+      if (b.adjustment.active()) adjustment_unavailable_at_ = b.adjustment.loc;
   }
   for (const BeamPart& part : beams_.beams) {
     // The low-rank adjusted operators keep the computed modes and cap the
