@@ -27,6 +27,7 @@
 
 #include "ir/model.h"
 #include "ir/model_error.h"
+#include "ir/model_override.h"
 #include "runtime/abi/mbfe_model_abi.h"
 #include "runtime/advisor/model_spectrum.h"
 #include "runtime/damping/beam_analysis_options.h"
@@ -54,6 +55,9 @@ struct LoadOptions {
   /// the price of generating the sources on every load (what `mbfe sweep`
   /// does for its points).
   bool cache_by_sources = false;
+  /// Values of the file replaced before it is validated (`--set PATH=VALUE`,
+  /// ir/model_override.h), in order; an error at one says it came from --set.
+  ir::ModelOverrides overrides;
 };
 
 /// M(q), F(q, q'), Q(q, q', t) of the rigid part at one state and, for a model
