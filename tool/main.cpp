@@ -25,7 +25,8 @@ Commands:
   stability  largest stable step of each integrator, original and adjusted
   plot       plot a results CSV to a PNG (needs gnuplot)
   sweep      a parameter study: many runs of one model, locally or on Slurm
-  stats      contact-force statistics of a results column (EN 50318: filtered, windowed)
+  stats      contact-force statistics of a results column (EN 50318: filtered, windowed);
+             the peak deck acceleration and its EN 1990 check
 
 Example:
   mbfe simulate models/double_pendulum.yaml --t-end 2 --out pendulum.csv
