@@ -85,7 +85,7 @@ TEST(ModelOverrides, ALastKeyMayBeNewAndLaterOverridesWin) {
 
 TEST(ModelOverrides, ABadPathIsAnErrorInTheFileNamingTheSet) {
   EXPECT_EQ(error_of(model_text(), {{"loads.rear_susp.stiffness", "1"}}),
-            "bridge.yaml:10:1: --set loads.rear_susp.stiffness=1: 'loads' has no item named 'rear_susp' (an item "
+            "bridge.yaml:11:3: --set loads.rear_susp.stiffness=1: 'loads' has no item named 'rear_susp' (an item "
             "of a list is reached by its name: key)");
   EXPECT_EQ(error_of(model_text(), {{"beams.bridge.sektion.inertia", "1"}}),
             "bridge.yaml:14:5: --set beams.bridge.sektion.inertia=1: 'bridge' has no key 'sektion'");
@@ -103,7 +103,7 @@ TEST(ModelOverrides, ABadPathIsAnErrorInTheFileNamingTheSet) {
 TEST(ModelOverrides, ABadValueIsAnErrorAtTheValueNamingTheSet) {
   const std::string text = model_text();
   const std::string e = error_of(text, {{"loads.front_susp.stiffness", "abc"}});
-  EXPECT_EQ(e.rfind("bridge.yaml:11:66: ", 0), 0u) << e;
+  EXPECT_EQ(e.rfind("bridge.yaml:11:69: ", 0), 0u) << e;
   EXPECT_NE(e.find("got 'abc'"), std::string::npos) << e;
   EXPECT_NE(e.find("(the value came from --set loads.front_susp.stiffness=abc)"), std::string::npos) << e;
   // An error elsewhere in the file does not blame the --set.
@@ -116,7 +116,7 @@ TEST(LoadNames, DuplicatesAndNonIdentifiersAreRefused) {
   std::string text = model_text();
   const std::string second = "  - {type: force, body: cart, value: [0, -5]}\n";
   text.replace(text.find(second), second.size(), "  - {name: front_susp, type: force, body: cart, value: [0, -5]}\n");
-  EXPECT_EQ(error_of(text, {}), "bridge.yaml:12:13: load 'front_susp': duplicate load name (first used at line 11)");
+  EXPECT_EQ(error_of(text, {}), "bridge.yaml:12:12: load 'front_susp': duplicate load name (first used at line 11)");
 }
 
 TEST(LoadNames, ASweepReachesANamedLoad) {
