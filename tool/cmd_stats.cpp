@@ -175,8 +175,9 @@ int cmd_stats(const Args& args) {
       for (const std::string& name : result_column_names(path))
         if (is_deck_acceleration(name)) names.push_back(name);
       if (names.empty())
-        throw UsageError(path + ": no deck acceleration column (BEAM@S:acc: simulate with --probe deck@10:acc); "
-                                "give --column NAME for the statistics of another column");
+        throw UsageError("--column NAME is required: " + path +
+                         " has no deck acceleration column (BEAM@S:acc, from --probe deck@10:acc), whose peak "
+                         "mbfe stats gives without one");
     }
     return deck_acceleration(path, names, track, options, parsed.has("json"));
   }

@@ -274,7 +274,9 @@ TEST(CmdStatsDeckAcceleration, NoAccelerationColumnOrABadTrackIsAnError) {
   }
   const CliRun none = run_cli("stats " + test::shell_quote(csv));
   EXPECT_EQ(none.status, 2);
-  EXPECT_NE(none.err.find("no deck acceleration column (BEAM@S:acc"), std::string::npos) << none.err;
+  EXPECT_NE(none.err.find("--column NAME is required: " + csv + " has no deck acceleration column (BEAM@S:acc"),
+            std::string::npos)
+      << none.err;
   const CliRun track = run_cli("stats " + test::shell_quote(acceleration_csv("acc2.csv", 1.0)) + " --en1990 slab");
   EXPECT_EQ(track.status, 2);
   EXPECT_NE(track.err.find("--en1990 takes ballasted"), std::string::npos) << track.err;
