@@ -27,6 +27,7 @@
 
 #include "ir/model.h"
 #include "ir/model_error.h"
+#include "ir/model_override.h"
 #include "runtime/abi/mbfe_model_abi.h"
 #include "runtime/advisor/model_spectrum.h"
 #include "runtime/damping/beam_analysis_options.h"
@@ -58,6 +59,9 @@ struct LoadOptions {
   /// beam) in the cache folder and reuse them (api/modal_cache.h), unless
   /// beams.modes_store already names a store.
   bool cache_modes = true;
+  /// Values of the file replaced before it is validated (`--set PATH=VALUE`,
+  /// ir/model_override.h), in order; an error at one says it came from --set.
+  ir::ModelOverrides overrides;
 };
 
 /// M(q), F(q, q'), Q(q, q', t) of the rigid part at one state and, for a model

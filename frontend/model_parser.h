@@ -95,6 +95,10 @@ class ModelParser {
 
   Load parse_load(const MapView& view);
 
+  /// The optional `name:` of a load (an identifier, unique among `names`,
+  /// the loads of the same list); empty when absent.
+  std::string optional_item_name(const MapView& view, std::unordered_map<std::string, SourceLoc>& names) const;
+
   /// The optional `start` / `stop` (s) of a load; stop after start.
   static TimeWindow time_window(const MapView& view);
 

@@ -189,14 +189,18 @@ void ModelParser::parse_damping(const MapView& view, Beam& beam) {
 
 void ModelParser::parse_beam_loads(const MapView& beam_view, const Field& field, Beam& beam) {
   const auto items = beam_view.list(field);
+  std::unordered_map<std::string, SourceLoc> names;  // point and moving loads share them
   for (std::size_t i = 0; i < items.size(); ++i) {
     const MapView view(file_, items[i],
-                       "beam " + quoted(beam.name) + ": load #" + std::to_string(i + 1), "",
-                       field.value_loc);
+                       "beam " + quoted(beam.name) + ": " +
+                           item_context(items[i], "load", i, limits_.max_name_length),
+                       "", field.value_loc);
     const Field& type = view.require("type");
+    const std::string name = optional_item_name(view, names);
     if (view.choice(type, {"point", "moving"}) == 0) {
-      view.allow({"type", "at", "value", "start", "stop"});
+      view.allow({"name", "type", "at", "value", "start", "stop"});
       BeamPointLoad load;
+      load.name = name;
       load.loc = view.loc();
       const Field& at = view.require("at");
       load.at = view.number(at);
@@ -208,8 +212,9 @@ void ModelParser::parse_beam_loads(const MapView& beam_view, const Field& field,
     }
     // A moving load's `start` is where it is at t0 (m); its time window is
     // the part of the crossing it is on the beam, so it takes no `stop`.
-    view.allow({"type", "value", "speed", "start", "t0"});
+    view.allow({"name", "type", "value", "speed", "start", "t0"});
     BeamMovingLoad load;
+    load.name = name;
     load.loc = view.loc();
     load.value = view.expression(view.require("value"));
     const Field& speed = view.require("speed");

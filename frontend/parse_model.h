@@ -5,6 +5,7 @@
 
 #include "ir/model.h"
 #include "ir/model_error.h"
+#include "ir/model_override.h"
 
 namespace mbfe::frontend {
 
@@ -35,12 +36,15 @@ struct ParseLimits {
   long max_expression_nodes = 10000;
 };
 
-/// Reads and validates `path`. @throws ir::ModelError on any problem, with the
-/// position of the offending key or value.
-ir::Model load_model_file(const std::string& path, const ParseLimits& limits = {});
+/// Reads and validates `path`, with `overrides` (`--set PATH=VALUE`) written
+/// into it first (frontend/model_overrides.h). @throws ir::ModelError on any
+/// problem, with the position of the offending key or value; an error at a
+/// value an override wrote says so.
+ir::Model load_model_file(const std::string& path, const ParseLimits& limits = {},
+                          const ir::ModelOverrides& overrides = {});
 
 /// Same, from text already in memory; `display_path` is used in messages.
 ir::Model parse_model_text(const std::string& text, const std::string& display_path,
-                       const ParseLimits& limits = {});
+                           const ParseLimits& limits = {}, const ir::ModelOverrides& overrides = {});
 
 }  // namespace mbfe::frontend

@@ -114,6 +114,7 @@ struct Load {
   double damping = 0.0;    // N s/m or N m s/rad
   double rest = 0.0;       // m or rad
   SourceLoc loc;
+  std::string name;  // optional (empty): how --set and sweeps address it
 };
 
 enum class SupportType { kPinned, kClamped, kSpring };
@@ -139,6 +140,7 @@ struct BeamPointLoad {
   int node = -1;       // resolved node index
   TimeWindow window;
   SourceLoc loc;
+  std::string name;  // optional (empty): how --set and sweeps address it
 };
 
 /// A transverse force travelling along a beam: `value` (an expression in t)
@@ -150,6 +152,7 @@ struct BeamMovingLoad {
   double start = 0.0;  // m, position at t = t0
   double t0 = 0.0;     // s
   SourceLoc loc;
+  std::string name;  // optional (empty): how --set and sweeps address it
 };
 
 /// A point mass at a node (a clamp, a dropper's half): adds to M on w.
@@ -218,6 +221,11 @@ enum class ContactType { kPin, kSliderPin, kSliderSpring };
 /// A body vertex pinned to, or sliding along, a beam's neutral axis: pin and
 /// slider_pin are constraints (docs/contacts.md); slider_spring is a penalty
 /// force N = k delta + c delta' with delta = w(s) - y_P, no constraint.
+/// The force law of a slider_spring: linear N = k delta + c delta', or
+/// Hertz's N = C_H delta^1.5 + c delta' (a wheel on a rail; zero unless the
+/// point penetrates).
+enum class ContactLaw { kLinear, kHertz };
+
 struct Contact {
   std::string name;
   ContactType type = ContactType::kPin;
@@ -225,11 +233,13 @@ struct Contact {
   int point = -1;  // index into Body::points
   int beam = -1;   // index into Model::beams
   double at = 0.0; // m along the beam (pin only)
-  double stiffness = 0.0;  // N/m (slider_spring)
+  double stiffness = 0.0;  // N/m (slider_spring, law linear; 0 for hertz)
   double damping = 0.0;    // N s/m (slider_spring)
   bool unilateral = false; // slider_spring: compression only (lift-off)
   bool from_below = false; // slider_spring: the point presses from the +w side (a pantograph under a wire)
   SourceLoc loc;
+  ContactLaw law = ContactLaw::kLinear;  // slider_spring: how N follows delta
+  double coefficient = 0.0;  // N/m^1.5 (slider_spring, law hertz: N = coefficient delta^1.5)
   bool is_constraint() const { return type != ContactType::kSliderSpring; }
 };
 

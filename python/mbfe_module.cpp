@@ -73,6 +73,29 @@ void refuse_nul(const std::string& text, const char* what) {
                           "), which no file name can hold");
 }
 
+/// `set={"loads.front_susp.stiffness": 2e6, ...}` as the command line's
+/// --set PATH=VALUE flags: a number as its shortest round-trip text (Python's
+/// repr), a bool as true/false, a string as written.
+mbfe::ir::ModelOverrides model_overrides(const py::object& set) {
+  mbfe::ir::ModelOverrides overrides;
+  if (set.is_none()) return overrides;
+  if (!py::isinstance<py::dict>(set)) throw py::type_error("set: expected a dict {PATH: value}");
+  for (const auto& [key, value] : set.cast<py::dict>()) {
+    if (!py::isinstance<py::str>(key)) throw py::type_error("set: each PATH is a string, such as 'beams.deck.section.inertia'");
+    const std::string path = key.cast<std::string>();
+    refuse_nul(path, "a PATH of set");
+    std::string text;
+    if (py::isinstance<py::bool_>(value)) text = value.cast<bool>() ? "true" : "false";
+    else if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)) text = py::repr(value).cast<std::string>();
+    else if (py::isinstance<py::str>(value)) text = value.cast<std::string>();
+    else throw py::type_error("set['" + path + "']: expected a number, a bool or a string");
+    refuse_nul(text, "a value of set");
+    if (path.empty()) throw py::value_error("set: a PATH is empty");
+    overrides.push_back({path, text});
+  }
+  return overrides;
+}
+
 py::object limit_value(const rt::StepLimit& l) {
   if (l.kind == rt::StepLimit::Kind::kFinite) return py::float_(l.h);
   if (l.kind == rt::StepLimit::Kind::kUnconditional) return py::float_(std::numeric_limits<double>::infinity());
@@ -425,19 +448,26 @@ PYBIND11_MODULE(mbfe, module) {
           "the run so far: status, message, steps, tallies");
 
   module.def(
-      "load", [](const std::string& path, bool quiet) {
+      "load",
+      [](const std::string& path, bool quiet, const py::object& set) {
         refuse_nul(path, "the path");
         mbfe::LoadOptions o;
         o.quiet = quiet;
+        o.overrides = model_overrides(set);
         return Model::load(path, o);
       },
-      py::arg("path"), py::arg("quiet") = true, "Reads a model file and gets its solver (compiled and cached on first use)");
+      py::arg("path"), py::arg("quiet") = true, py::arg("set") = py::none(),
+      "Reads a model file and gets its solver (compiled and cached on first use); set={PATH: value} replaces "
+      "values of the file first, as mbfe simulate --set PATH=VALUE does");
   module.def(
       "parse",
-      [](const std::string& text, const std::string& name) {
+      [](const std::string& text, const std::string& name, const py::object& set) {
         refuse_nul(name, "the name");
-        return Model::parse(text, name);
+        mbfe::LoadOptions o;
+        o.overrides = model_overrides(set);
+        return Model::parse(text, name, o);
       },
-      py::arg("text"), py::arg("name") = "<string>", "A model from YAML text");
+      py::arg("text"), py::arg("name") = "<string>", py::arg("set") = py::none(),
+      "A model from YAML text (name is the file name its messages give); set= as in load");
   module.attr("__version__") = MBFE_GENERATOR_VERSION;
 }

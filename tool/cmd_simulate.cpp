@@ -55,7 +55,10 @@ Options:
   --adjust on|off    beam and coupled models: use the modal adjustment of
                      damping (default: on when a beam has an adjustment block)
   --probe BEAM@S     beam and coupled models: displacement at S m along BEAM
-                     (several as a comma-separated list)
+                     (several as a comma-separated list); BEAM@S:acc its
+                     acceleration (m/s^2), BODY:acc a body's joint coordinate
+                     acceleration (coupled models; m/s^2 or rad/s^2), both as
+                     columns at the end of a coupled model's row
   --formulation F    coupled models: partitioned (default; eqs (16)-(17),
                      |Phi| closed by Newton at every step) or augmented
                      (multipliers; a cross-check, |Phi| drifts)
@@ -78,6 +81,11 @@ Options:
                      and report how far the contact forces and displacements
                      are from it (stderr, and "adjustment_check" in the
                      sidecar); docs/damping-adjustment.md
+  --set PATH=VALUE   replace a value of the model file before it is read
+                     (repeatable): PATH as a sweep's vary paths, list items by
+                     their name: (loads.front_susp.stiffness=2e6,
+                     beams.bridge.section.inertia=0.3); errors point into the
+                     file and name the --set
   --strict           an initial state that violates the contacts is an error
                      (exit 2) instead of being projected onto them
   --quiet            no progress or cache messages on stderr
@@ -94,6 +102,8 @@ Examples:
   mbfe simulate models/paper_platform.yaml --integrator forward_euler --step 1.4e-5 --t-end 1 --out platform.csv
   mbfe simulate models/bridge_moving_mass.yaml --probe deck@10 --out crossing.csv
   mbfe simulate models/vehicle_bridge_30m.yaml --integrator rk4 --step 1e-3 --check-adjustment 0.2 --out v.csv
+  mbfe simulate models/bridge_moving_mass.yaml --probe deck@10,deck@10:acc,wheel:acc --out acc.csv
+  mbfe simulate models/bridge_moving_mass.yaml --set beams.deck.section.inertia=0.3 --out stiffer.csv
 )";
 
 std::vector<std::string> split_commas(const std::string& text) {
@@ -196,7 +206,7 @@ void print_tallies(const runtime::SimulationReport& report, const std::optional<
 
 int cmd_simulate(const Args& args) {
   const ParsedArgs parsed(args, {"integrator", "step", "t-end", "out", "every", "adjust", "probe", "rho-inf", "formulation", "start",
-                           "vtk", "vtk-scale", "vtk-frames", "check-adjustment"},
+                           "vtk", "vtk-scale", "vtk-frames", "check-adjustment", "set"},
                           {"help", "quiet", "strict"});
   if (parsed.has("help")) {
     std::cout << kHelp;
@@ -231,6 +241,7 @@ int cmd_simulate(const Args& args) {
   }
   LoadOptions load;
   load.quiet = parsed.has("quiet");
+  load.overrides = model_overrides(parsed);
   const Model model = Model::load(model_path, load);
   runtime::SimulationRequest request = request_of(parsed, model);
   std::unique_ptr<VtkAnimation> vtk;

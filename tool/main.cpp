@@ -26,7 +26,8 @@ Commands:
   advise     the lowest omega_limit for an accuracy tolerance, its steps and wall time
   plot       plot a results CSV to a PNG (needs gnuplot)
   sweep      a parameter study: many runs of one model, locally or on Slurm
-  stats      contact-force statistics of a results column (EN 50318: filtered, windowed)
+  stats      contact-force statistics of a results column (EN 50318: filtered, windowed);
+             the peak deck acceleration and its EN 1990 check
 
 Example:
   mbfe simulate models/double_pendulum.yaml --t-end 2 --out pendulum.csv

@@ -108,10 +108,10 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   if (kind_ == ModelKind::kCoupled) {
     try {
       original_coupled_ = std::make_shared<const CoupledModel>(*kernels_, coupled_beams(beams_, false), bodies_,
-                                                              model_.links, links_.rest);
+                                                              model_.links, links_.rest, model_.contacts);
       if (beams_.any_adjustment && adjustment_unavailable_.empty())
         adjusted_coupled_ = std::make_shared<const CoupledModel>(*kernels_, coupled_beams(beams_, true, joined_),
-                                                                bodies_, model_.links, links_.rest);
+                                                                bodies_, model_.links, links_.rest, model_.contacts);
     } catch (const std::invalid_argument& e) {
       throw InvalidInput(model_.source_path + ": " + e.what());
     }

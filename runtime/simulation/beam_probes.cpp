@@ -21,6 +21,19 @@ std::vector<BeamProbe> resolve_probes(const std::vector<ProbeSpec>& specs, const
         throw InvalidRequest("probes", "'" + spec.label + "' is given twice; each probe is a column and needs a name of its own");
     BeamProbe p;
     p.label = spec.label;
+    p.acceleration = spec.acceleration;
+    if (spec.body) {
+      for (std::size_t i = 0; i < model.bodies.size(); ++i)
+        if (model.bodies[i].name == spec.beam) p.body = static_cast<int>(i);
+      if (p.body < 0) {
+        std::string names;
+        for (const auto& b : model.bodies) names += (names.empty() ? "" : ", ") + b.name;
+        throw InvalidRequest("probes", "'" + spec.label + "': no body named '" + spec.beam + "' (bodies: " +
+                                           (names.empty() ? "none" : names) + ")");
+      }
+      out.push_back(std::move(p));
+      continue;
+    }
     for (std::size_t i = 0; i < model.beams.size(); ++i)
       if (model.beams[i].name == spec.beam) p.beam = static_cast<int>(i);
     if (p.beam < 0) {

@@ -37,7 +37,8 @@ class BeamRun final : public ModelRun {
     } else {
       for (const BeamProbe& p : probes_) {
         layout_.columns.push_back(p.label);
-        layout_.units.push_back("m");
+        layout_.units.push_back(p.acceleration ? "m/s^2" : "m");
+        any_acceleration_ = any_acceleration_ || p.acceleration;
       }
     }
     // A probe is a fixed linear map of q = Phi eta: fold it into one row of
@@ -69,7 +70,14 @@ class BeamRun final : public ModelRun {
       for (int i = 0; i < n_; ++i) values[1 + i] = q_[i];
     } else {
       probe_values_.noalias() = probe_rows_ * y.head(n_);
-      for (std::size_t k = 0; k < probes_.size(); ++k) values[1 + k] = probe_values_[k];
+      // Accelerations: the modal ODE's eta'' at this state (one more
+      // evaluation of its right-hand side per row).
+      if (any_acceleration_) {
+        ode_->rhs(t, y, ydot_);
+        probe_accelerations_.noalias() = probe_rows_ * ydot_.tail(n_);
+      }
+      for (std::size_t k = 0; k < probes_.size(); ++k)
+        values[1 + k] = probes_[k].acceleration ? probe_accelerations_[k] : probe_values_[k];
     }
     if (q == nullptr) return;
     if (state) {
@@ -147,7 +155,8 @@ class BeamRun final : public ModelRun {
   std::unique_ptr<ModalBeamOde> ode_;
   std::vector<BeamProbe> probes_;
   Eigen::MatrixXd probe_rows_;
-  Eigen::VectorXd probe_values_, q_;
+  Eigen::VectorXd probe_values_, probe_accelerations_, ydot_, q_;
+  bool any_acceleration_ = false;
   std::vector<Applied> applied_;
 };
 

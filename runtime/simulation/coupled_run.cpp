@@ -83,7 +83,12 @@ class CoupledRun final : public ModelRun {
     probes_ = resolve_probes(request.probes, model.ir(), model.beams());
     // Low-rank adjusted beams step in split coordinates when nothing is
     // partitioned: the same ODE, without passes over their kept modes.
-    split_ = !index3_ && !augmented && adjusted_ && dynamics_->split_low_rank_beams();
+    // A beam's acceleration is read from the nodal q_c'' (split coordinates
+    // hold s'' in its place).
+    const bool beam_accelerations = std::any_of(probes_.begin(), probes_.end(), [](const BeamProbe& p) {
+      return p.acceleration && p.body < 0;
+    });
+    split_ = !index3_ && !augmented && adjusted_ && !beam_accelerations && dynamics_->split_low_rank_beams();
     if (split_) {
       system_ = std::make_unique<SplitBeamSystem>(dynamics_);
     } else if (index3_) {
@@ -139,7 +144,7 @@ class CoupledRun final : public ModelRun {
     rows_at_probes_ = split_ && !probes_.empty() && !request.state_in_rows;
     for (const BeamProbe& p : probes_)
       for (int a = 0; a < 4; ++a)
-        if (p.weights.free_index[a] >= 0) probe_dofs_.push_back(p.offset + p.weights.free_index[a]);
+        if (p.body < 0 && p.weights.free_index[a] >= 0) probe_dofs_.push_back(p.offset + p.weights.free_index[a]);
     tallies_ = std::make_unique<ContactTallies>(dynamics_->model());
   }
 
@@ -161,7 +166,8 @@ class CoupledRun final : public ModelRun {
       if (probes_.empty()) {
         for (int i = nb; i < n; ++i) values[k++] = (*x)[i];
       } else {
-        for (const BeamProbe& p : probes_) values[k++] = p.value(x->data() + nb);
+        for (const BeamProbe& p : probes_)
+          if (!p.acceleration) values[k++] = p.value(x->data() + nb);
       }
     }
     for (int r = 0; r < m; ++r) values[k++] = contacts.lambda[r];
@@ -175,6 +181,8 @@ class CoupledRun final : public ModelRun {
       dynamics_->drive_reactions(contacts.qdd, reactions_);
       for (Eigen::Index i = 0; i < reactions_.size(); ++i) values[k++] = reactions_[i];
     }
+    for (const BeamProbe& p : probes_)
+      if (p.acceleration) values[k++] = p.body >= 0 ? contacts.qdd[p.body] : p.value(contacts.qdd.data() + nb);
     if (q_out == nullptr) return;
     if (rows_at_probes_) {
       q_out->resize(0);
@@ -286,6 +294,7 @@ class CoupledRun final : public ModelRun {
       }
     } else {
       for (const BeamProbe& p : probes_) {
+        if (p.acceleration) continue;  // at the end of the row
         positions.push_back(p.label);
         units.push_back(beam_coordinate_unit(false));
         rate_units.push_back(beam_rate_unit(false));
@@ -321,6 +330,13 @@ class CoupledRun final : public ModelRun {
     for (int d : dynamics_->driven()) {
       layout_.columns.push_back(model_.ir().bodies[d].name + "_drive");
       layout_.units.push_back(model_.ir().bodies[d].joint.type == ir::JointType::kRevolute ? "N m" : "N");
+    }
+    // Acceleration probes last: a beam's (m/s^2) or a body coordinate's.
+    for (const BeamProbe& p : probes_) {
+      if (!p.acceleration) continue;
+      layout_.columns.push_back(p.label);
+      const bool angle = p.body >= 0 && model_.ir().bodies[p.body].joint.type == ir::JointType::kRevolute;
+      layout_.units.push_back(angle ? "rad/s^2" : "m/s^2");
     }
   }
 

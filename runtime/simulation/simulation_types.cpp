@@ -10,13 +10,24 @@
 namespace mbfe::runtime {
 
 ProbeSpec parse_probe(const std::string& text) {
-  const auto at = text.find('@');
-  if (at == std::string::npos)
-    throw InvalidRequest("probes", "'" + text + "': expected BEAM@S (S in m along the beam), e.g. beam1@0.5");
+  static const std::string kAcc = ":acc";
+  const bool acc = text.size() > kAcc.size() && text.compare(text.size() - kAcc.size(), kAcc.size(), kAcc) == 0;
+  const std::string place = acc ? text.substr(0, text.size() - kAcc.size()) : text;
+  const auto at = place.find('@');
   ProbeSpec spec;
   spec.label = text;
-  spec.beam = text.substr(0, at);
-  const std::string number = text.substr(at + 1);
+  spec.acceleration = acc;
+  if (at == std::string::npos) {
+    if (!acc || place.empty())
+      throw InvalidRequest("probes", "'" + text +
+                                         "': expected BEAM@S (S in m along the beam), BEAM@S:acc (its acceleration) "
+                                         "or BODY:acc, e.g. beam1@0.5, beam1@0.5:acc, wheel:acc");
+    spec.beam = place;
+    spec.body = true;
+    return spec;
+  }
+  spec.beam = place.substr(0, at);
+  const std::string number = place.substr(at + 1);
   char* end = nullptr;
   errno = 0;
   spec.s = std::strtod(number.c_str(), &end);

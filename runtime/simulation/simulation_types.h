@@ -22,15 +22,19 @@ enum class CoupledFormulation {
   kAugmented,    // multipliers; a cross-check, |Phi| drifts
 };
 
-/// A probe as asked for: BEAM@S, S in m along the beam.
+/// A probe as asked for: BEAM@S (the displacement, m) or BEAM@S:acc (the
+/// acceleration, m/s^2), S in m along the beam; or BODY:acc, the second
+/// derivative of a body's joint coordinate (m/s^2 or rad/s^2).
 struct ProbeSpec {
-  std::string label;  // as written, e.g. "beam1@0.5": the column name
-  std::string beam;
+  std::string label;  // as written, e.g. "beam1@0.5" or "beam1@0.5:acc": the column name
+  std::string beam;   // the beam's name, or the body's (body)
   double s = 0.0;     // m
+  bool acceleration = false;  // ":acc"
+  bool body = false;          // BODY:acc
 };
 
-/// Parses "BEAM@S". @throws InvalidRequest (field "probes") naming the text
-/// for any other form.
+/// Parses "BEAM@S", "BEAM@S:acc" or "BODY:acc". @throws InvalidRequest (field "probes")
+/// naming the text for any other form.
 ProbeSpec parse_probe(const std::string& text);
 
 struct SimulationRequest {

@@ -132,6 +132,26 @@ class SameAsTheCommandLine(unittest.TestCase):
             self.assertTrue(str(caught.exception).startswith(path + ":5:"), str(caught.exception))
         self.assertTrue(issubclass(mbfe.ModelError, ValueError))
 
+    def test_set_overrides_as_the_command_line(self):
+        # set={PATH: value} is --set PATH=VALUE: the same run, the same message.
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "s.csv")
+            r = cli("simulate", model("double_pendulum.yaml"), "--set", "bodies.link2.mass=2.5", "--t-end", "0.3",
+                    "--quiet", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            header, rows = read_csv(out)
+        run = mbfe.load(model("double_pendulum.yaml"), set={"bodies.link2.mass": 2.5}).simulate(t_end=0.3)
+        for k, name in enumerate(header):
+            np.testing.assert_array_equal(run[name], rows[:, k], err_msg=name)
+        r = cli("eval", model("double_pendulum.yaml"), "--set", "bodies.link2.mass=-1", "--json")
+        self.assertEqual(r.returncode, 2)
+        with self.assertRaises(mbfe.ModelError) as caught:
+            mbfe.load(model("double_pendulum.yaml"), set={"bodies.link2.mass": -1})
+        self.assertEqual(str(caught.exception), r.stderr.strip())
+        self.assertIn("--set bodies.link2.mass=-1", str(caught.exception))
+        with self.assertRaises(TypeError):
+            mbfe.load(model("double_pendulum.yaml"), set={"bodies.link2.mass": [1, 2]})
+
     def test_request_the_model_cannot_run(self):
         with self.assertRaises(ValueError):
             mbfe.load(model("double_pendulum.yaml")).simulate(probes=["deck@1"])
