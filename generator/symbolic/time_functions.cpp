@@ -164,6 +164,12 @@ ex to_ginac(const ir::Expression& e, const GiNaC::symbol& t) {
         !is_number(args[1]))
       undefined(e, n, "'^' raises 0 to a power in t (0, 1 or undefined by the exponent's sign, and without a "
                       "derivative)");
+    // 0^0 and 0^-k: GiNaC's pow() throws from the evaluation of the power it
+    // has just allocated, and leaks it; say it here instead.
+    if (n.kind == ir::ExpressionNode::Kind::kPower && is_number(args[0]) && num(args[0]).is_zero() &&
+        is_number(args[1]) && num(args[1]).is_real() && !num(args[1]).is_positive())
+      undefined(e, n, std::string(num(args[1]).is_zero() ? "0^0, which is undefined," : "a division by zero") +
+                          " for every t (0 raised to " + (num(args[1]).is_zero() ? "0" : "a negative power") + ")");
     ex value;
     try {
       value = convert(n, args, t);

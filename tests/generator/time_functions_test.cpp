@@ -55,8 +55,11 @@ TEST(TimeFunctions, UndefinedForEveryTIsAnErrorAtTheOperator) {
             "m.yaml:9:20: load #1: value: the log of 0 for every t (GiNaC: log_eval(): log(0)); expected a real, "
             "finite value in expression \"log(t-t)\"");
   EXPECT_EQ(conversion_error("(t-t)^0"),
-            "m.yaml:9:25: load #1: value: 0^0, which is undefined, for every t (GiNaC: power::eval(): pow(0,0) is "
-            "undefined); expected a real, finite value in expression \"(t-t)^0\"");
+            "m.yaml:9:25: load #1: value: 0^0, which is undefined, for every t (0 raised to 0); expected a real, finite "
+            "value in expression \"(t-t)^0\"");
+  EXPECT_EQ(conversion_error("(t-t)^(-2)"),
+            "m.yaml:9:25: load #1: value: a division by zero for every t (0 raised to a negative power); expected a "
+            "real, finite value in expression \"(t-t)^(-2)\"");
   EXPECT_EQ(conversion_error("2 + sqrt(t-t-1)"),
             "m.yaml:9:24: load #1: value: 'sqrt' is not real for any t (a negative number under a root or a log); "
             "expected a real, finite value in expression \"2 + sqrt(t-t-1)\"");
