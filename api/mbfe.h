@@ -1,18 +1,22 @@
 // The public C++ API of mbfe (docs/api.md): load a model with its solver,
-// evaluate its equations, get its spectrum and stable steps, simulate it.
+// evaluate its equations, get its spectrum and stable steps, simulate it
+// (whole, with rows to an observer, or a step at a time with a Simulator:
+// api/simulator.h), and write results (api/results_output.h,
+// api/run_record.h, api/vtk_animation.h).
 //
 //   #include "api/mbfe.h"
 //
 //   const mbfe::Model model = mbfe::Model::load("models/paper_platform.yaml");
-//   mbfe::runtime::SimulationRequest request;
+//   mbfe::runtime::SimulationRequest request = model.request();  // the model's `simulation:` block
 //   request.integrator = mbfe::runtime::parse_integrator("rk4");
 //   request.step = 2e-5;
-//   request.t_end = 1.0;
 //   MyObserver observer;  // a runtime::SimulationObserver: begin(layout), row(row)
 //   const mbfe::runtime::SimulationReport report = model.simulate(request, observer);
 //
 // A Model is cheap to copy (it shares its immutable parts) and safe to use
 // from several threads at once: every call builds the workspace it writes.
+// The headers here include only the runtime's value types (requests, rows,
+// reports, spectra, errors); the runtime's classes stay behind them.
 #pragma once
 
 #include <Eigen/Core>
@@ -23,14 +27,19 @@
 
 #include "ir/model.h"
 #include "ir/model_error.h"
+#include "ir/model_override.h"
 #include "runtime/abi/mbfe_model_abi.h"
-#include "runtime/damping/beam_model.h"
-#include "runtime/integrators/integrator.h"
-#include "runtime/errors/multibody_errors.h"
-#include "runtime/simulation/assembled_model.h"
-#include "runtime/errors/invalid_input.h"
-#include "runtime/simulation/simulate.h"
 #include "runtime/advisor/model_spectrum.h"
+#include "runtime/damping/beam_analysis_options.h"
+#include "runtime/errors/invalid_input.h"
+#include "runtime/errors/multibody_errors.h"
+#include "runtime/integrators/integrator_spec.h"
+#include "runtime/simulation/model_kind.h"
+#include "runtime/simulation/simulation_types.h"
+
+namespace mbfe::runtime {
+class AssembledModel;
+}
 
 namespace mbfe {
 
@@ -46,6 +55,13 @@ struct LoadOptions {
   /// the price of generating the sources on every load (what `mbfe sweep`
   /// does for its points).
   bool cache_by_sources = false;
+  /// Keep the modes a large beam's cap keeps (spectrum slicing, seconds per
+  /// beam) in the cache folder and reuse them (api/modal_cache.h), unless
+  /// beams.modes_store already names a store.
+  bool cache_modes = true;
+  /// Values of the file replaced before it is validated (`--set PATH=VALUE`,
+  /// ir/model_override.h), in order; an error at one says it came from --set.
+  ir::ModelOverrides overrides;
 };
 
 /// M(q), F(q, q'), Q(q, q', t) of the rigid part at one state and, for a model
@@ -102,8 +118,16 @@ class Model {
   bool solver_compiled_now() const;
 
   /// The model assembled for the numerics (beams assembled and analysed on
-  /// first use). @throws runtime::InvalidInput for a beam the analysis refuses.
+  /// first use), for programs that reach into the runtime (include
+  /// runtime/simulation/assembled_model.h). @throws runtime::InvalidInput for
+  /// a beam the analysis refuses.
   const runtime::AssembledModel& assembled() const;
+  /// The model assembled for a run with `adjust` (SimulationRequest::adjust):
+  /// a run of a coupled model's original beams (false) does not
+  /// need the modes a large beam's cap keeps, and gets a model assembled
+  /// without them (once) unless assembled() was built already. Otherwise
+  /// assembled(). @throws as assembled().
+  const runtime::AssembledModel& assembled_for(std::optional<bool> adjust) const;
 
   /// M, F, Q and the constraints at `state`; driven coordinates and rates are
   /// the motion's at state.t. @throws runtime::InvalidInput for
@@ -120,10 +144,20 @@ class Model {
   /// beam has an adjustment block) adjusted.
   std::vector<runtime::StepLimitRow> step_limits() const;
 
+  /// The request of the model's `simulation:` block (integrator, step, end
+  /// time; the rest at its defaults): the one place a request starts from.
+  /// Change its fields, then simulate. @throws runtime::InvalidInput naming
+  /// the integrator when the block names an unknown one.
+  runtime::SimulationRequest request() const;
+
   /// Runs `request` (runtime/simulation/simulate.h); rows go to `observer`.
-  /// @throws runtime::InvalidInput for a request this model cannot run.
+  /// `keep_going` is asked before every step; false stops the run there
+  /// (status interrupted: a caller's Ctrl-C).
+  /// @throws runtime::InvalidRequest naming the field of `request` this model
+  ///         cannot run, runtime::InvalidInput for other bad input.
   runtime::SimulationReport simulate(const runtime::SimulationRequest& request,
-                                     runtime::SimulationObserver& observer) const;
+                                     runtime::SimulationObserver& observer,
+                                     const runtime::StepMonitor& keep_going = {}) const;
 
  private:
   struct Shared;  // the IR, the solver and the assembled model (model.cpp)

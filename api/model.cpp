@@ -2,12 +2,16 @@
 
 #include "api/mbfe.h"
 
+#include "api/modal_cache.h"
 #include "api/solver_cache.h"
 #include "frontend/parse_model.h"
 #include "ir/coordinate_layout.h"
 #include "runtime/fem/beam_system.h"
 #include "runtime/coupled/contact_constraints.h"
 #include "runtime/multibody/rigid_system.h"
+#include "runtime/simulation/assembled_model.h"
+#include "runtime/simulation/simulate.h"
+#include "runtime/structure/coupled_beam.h"
 
 namespace mbfe {
 
@@ -22,6 +26,8 @@ struct Model::Shared {
   // evaluate() does not need it.
   mutable std::mutex assembled_mutex;
   mutable std::shared_ptr<const runtime::AssembledModel> assembled;
+  // Assembled for runs of the original model only (assembled_for(false)).
+  mutable std::shared_ptr<const runtime::AssembledModel> original_only;
 };
 
 Model Model::make(ir::Model model, const mbfe_model_v1* solver, std::string library, bool compiled_now,
@@ -60,6 +66,8 @@ Model Model::make(ir::Model model, const mbfe_model_v1* solver, std::string libr
   shared->solver_library = std::move(library);
   shared->compiled_now = compiled_now;
   shared->beam_options = options.beams;
+  if (options.cache_modes && !shared->beam_options.modes_store)
+    shared->beam_options.modes_store = disk_modal_store(options.quiet);
   return Model(std::move(shared));
 }
 
@@ -74,13 +82,13 @@ LoadedSolver cached_solver(const ir::Model& model, const LoadOptions& options) {
 }  // namespace
 
 Model Model::load(const std::string& path, const LoadOptions& options) {
-  ir::Model model = frontend::load_model_file(path);
+  ir::Model model = frontend::load_model_file(path, {}, options.overrides);
   const LoadedSolver solver = cached_solver(model, options);
   return make(std::move(model), solver.model, solver.library_path, solver.compiled_now, options);
 }
 
 Model Model::parse(const std::string& text, const std::string& display_path, const LoadOptions& options) {
-  ir::Model model = frontend::parse_model_text(text, display_path);
+  ir::Model model = frontend::parse_model_text(text, display_path, {}, options.overrides);
   const LoadedSolver solver = cached_solver(model, options);
   return make(std::move(model), solver.model, solver.library_path, solver.compiled_now, options);
 }
@@ -111,6 +119,18 @@ const runtime::AssembledModel& Model::assembled() const {
     shared_->assembled =
         std::make_shared<const runtime::AssembledModel>(shared_->ir, shared_->solver, shared_->beam_options);
   return *shared_->assembled;
+}
+
+const runtime::AssembledModel& Model::assembled_for(std::optional<bool> adjust) const {
+  if (adjust.value_or(true) || shared_->kind != runtime::ModelKind::kCoupled) return assembled();
+  std::lock_guard<std::mutex> lock(shared_->assembled_mutex);
+  if (shared_->assembled) return *shared_->assembled;
+  if (!shared_->original_only) {
+    runtime::BeamAnalysisOptions options = shared_->beam_options;
+    options.original_only = true;
+    shared_->original_only = std::make_shared<const runtime::AssembledModel>(shared_->ir, shared_->solver, options);
+  }
+  return *shared_->original_only;
 }
 
 namespace {
@@ -179,9 +199,23 @@ std::vector<runtime::StepLimitRow> Model::step_limits() const {
   return runtime::step_limit_table(original, &adjusted);
 }
 
+runtime::SimulationRequest Model::request() const {
+  const ir::Model& model = shared_->ir;
+  runtime::SimulationRequest request;
+  try {
+    request.integrator = runtime::parse_integrator(model.simulation.integrator);
+  } catch (const std::invalid_argument& e) {
+    throw runtime::InvalidRequest("integrator", e.what());
+  }
+  request.step = model.simulation.step;
+  request.t_end = model.simulation.t_end;
+  return request;
+}
+
 runtime::SimulationReport Model::simulate(const runtime::SimulationRequest& request,
-                                          runtime::SimulationObserver& observer) const {
-  return runtime::simulate(assembled(), request, observer);
+                                          runtime::SimulationObserver& observer,
+                                          const runtime::StepMonitor& keep_going) const {
+  return runtime::simulate(assembled_for(request.adjust), request, observer, keep_going);
 }
 
 }  // namespace mbfe

@@ -77,8 +77,6 @@ RunResult run_fixed(const Setup& s, const std::vector<runtime::ModalDynamics>& m
   opt.step = h;
   opt.t_end = t_end;
   opt.max_rows = kMaxRows;
-  opt.quiet = true;
-  opt.handle_sigint = false;
   opt.reference_norm = 1.0;  // states are O(1e-2) (m, or modal); 1e6 flags any blow-up early
   RunResult out;
   const auto spec = runtime::parse_integrator(integrator);
@@ -115,8 +113,6 @@ RunResult run_nodal_original_fe(const Setup& s, double h, double t_end) {
   opt.step = h;
   opt.t_end = t_end;
   opt.every = 1000;
-  opt.quiet = true;
-  opt.handle_sigint = false;
   RunResult out;
   const double c0 = cpu_now();
   const auto t0 = Clock::now();

@@ -35,8 +35,6 @@ void run(benchmark::State& state, runtime::OdeSystem& ode, double h, double t_en
   opt.step = h;
   opt.t_end = t_end;
   opt.every = 100;
-  opt.quiet = true;
-  opt.handle_sigint = false;
   const auto fe = runtime::parse_integrator("forward_euler");
   const Eigen::VectorXd y0 = Eigen::VectorXd::Zero(ode.size());
   double sink = 0.0;

@@ -73,7 +73,6 @@ Trace run(const Model& model, const std::string& integrator, double h, double t_
   r.t_end = t_end;
   r.adjust = adjusted;
   r.every = std::max<long>(1, std::lround(kRowInterval / h));  // steps of 1 ms or more: every step
-  r.handle_sigint = false;
   Trace t;
   Collect sink(t);
   const runtime::SimulationReport report = model.simulate(r, sink);

@@ -40,7 +40,6 @@ void run(benchmark::State& state, const char* model, const char* integrator, dou
   r.step = step;
   r.t_end = t_end;
   r.adjust = adjusted;
-  r.handle_sigint = false;
   runtime::SimulationReport report;
   for (auto _ : state) {
     Sink sink;

@@ -68,8 +68,6 @@ void BM_PaperPlatform1s(benchmark::State& state) {
   opt.step = s.h;
   opt.t_end = 1.0;
   opt.every = 100;
-  opt.quiet = true;
-  opt.handle_sigint = false;
   opt.divergence_factor = 1e4;
   const auto fe = runtime::parse_integrator("forward_euler");
   double sink = 0.0;

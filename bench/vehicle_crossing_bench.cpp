@@ -36,7 +36,6 @@ runtime::SimulationRequest request(const Model& m) {
   r.t_end = m.ir().simulation.t_end;
   r.every = 1;
   r.probes = {runtime::parse_probe("deck@10")};
-  r.handle_sigint = false;
   return r;
 }
 

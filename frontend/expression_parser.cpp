@@ -1,10 +1,12 @@
 #include "frontend/expression_parser.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-
+#include <iterator>
 #include <string_view>
+#include <vector>
 
 #include "ir/model_error.h"
 #include "frontend/yaml_reader.h"
@@ -31,17 +33,25 @@ class ExpressionParser {
   Expression parse() {
     skip_space();
     if (pos_ == text_.size()) fail(pos_, "is empty; expected an expression in t");
-    Expression e = sum(0);
+    sum(0);
     skip_space();
     if (pos_ != text_.size()) fail(pos_, "unexpected '" + shown(std::string(1, text_[pos_])) + "'");
+    Expression e(std::move(nodes_), ir::ExpressionSource{file_, what_, shown(text_), loc_});
+    // A part that does not depend on t is a number: one that is not finite
+    // (1/0, log(0), exp(1000)) or undefined (0^0) is an error here, where it
+    // is written, not a GiNaC exception in the generator or a NaN in a run.
+    if (const auto fault = e.constant_fault()) {
+      const ir::SourceLoc where = e.nodes()[fault->node].loc;
+      throw ir::ModelError(file_, where,
+                           what_ + ": " + fault->reason + "; expected a finite value in expression \"" +
+                               shown(text_) + "\"");
+    }
     return e;
   }
 
  private:
   [[noreturn]] void fail(std::size_t at, const std::string& message) const {
-    ir::SourceLoc where = loc_;
-    if (where.line > 0) where.column += static_cast<int>(at);
-    throw ir::ModelError(file_, where, what_ + ": " + message + " in expression \"" + shown(text_) + "\"");
+    throw ir::ModelError(file_, here(at), what_ + ": " + message + " in expression \"" + shown(text_) + "\"");
   }
 
   ir::SourceLoc here(std::size_t at) const {
@@ -68,59 +78,72 @@ class ExpressionParser {
       fail(pos_, "nested more than " + std::to_string(kMaxExpressionDepth) + " deep");
   }
 
-  static Expression binary(Expression::Kind kind, Expression a, Expression b, ir::SourceLoc loc) {
-    Expression e;
-    e.kind = kind;
-    e.loc = loc;
-    e.args.push_back(std::move(a));
-    e.args.push_back(std::move(b));
-    return e;
+  /// Appends a node written at `at` whose arguments, the last subtrees
+  /// appended, are at most `deepest` deep; returns the depth of its tree.
+  int push(Expression::Kind kind, std::size_t at, int deepest, double value = 0.0,
+           ir::Function function = ir::Function::kSin) {
+    if (nodes_.size() >= static_cast<std::size_t>(kMaxExpressionNodes))
+      fail(at, "more than " + std::to_string(kMaxExpressionNodes) +
+                   " numbers, names and operators (the limit, kMaxExpressionNodes)");
+    if (deepest + 1 > kMaxExpressionTreeDepth)
+      fail(at, "a tree deeper than " + std::to_string(kMaxExpressionTreeDepth) +
+                   " (the limit, kMaxExpressionTreeDepth; a sum or product of n terms is n deep)");
+    ir::ExpressionNode n;
+    n.kind = kind;
+    n.value = value;
+    n.function = function;
+    n.loc = here(at);
+    nodes_.push_back(n);
+    return deepest + 1;
   }
 
-  Expression sum(int depth) {
+  int sum(int depth) {
     enter(depth);
-    Expression e = product(depth + 1);
+    int tree = product(depth + 1);
     for (;;) {
       skip_space();
       const std::size_t at = pos_;
-      if (accept('+')) e = binary(Expression::Kind::kAdd, std::move(e), product(depth + 1), here(at));
-      else if (accept('-')) e = binary(Expression::Kind::kSubtract, std::move(e), product(depth + 1), here(at));
-      else return e;
+      Expression::Kind kind;
+      if (accept('+')) kind = Expression::Kind::kAdd;
+      else if (accept('-')) kind = Expression::Kind::kSubtract;
+      else return tree;
+      const int right = product(depth + 1);
+      tree = push(kind, at, std::max(tree, right));
     }
   }
 
-  Expression product(int depth) {
+  int product(int depth) {
     enter(depth);
-    Expression e = unary(depth + 1);
+    int tree = unary(depth + 1);
     for (;;) {
       skip_space();
       const std::size_t at = pos_;
-      if (accept('*')) e = binary(Expression::Kind::kMultiply, std::move(e), unary(depth + 1), here(at));
-      else if (accept('/')) e = binary(Expression::Kind::kDivide, std::move(e), unary(depth + 1), here(at));
-      else return e;
+      Expression::Kind kind;
+      if (accept('*')) kind = Expression::Kind::kMultiply;
+      else if (accept('/')) kind = Expression::Kind::kDivide;
+      else return tree;
+      const int right = unary(depth + 1);
+      tree = push(kind, at, std::max(tree, right));
     }
   }
 
-  Expression unary(int depth) {
+  int unary(int depth) {
     enter(depth);
     skip_space();
     const std::size_t at = pos_;
-    if (accept('-')) {
-      Expression e;
-      e.kind = Expression::Kind::kNegate;
-      e.loc = here(at);
-      e.args.push_back(unary(depth + 1));
-      return e;
-    }
+    if (accept('-')) return push(Expression::Kind::kNegate, at, unary(depth + 1));
     if (accept('+')) return unary(depth + 1);
-    Expression base = primary(depth + 1);
+    const int base = primary(depth + 1);
     skip_space();
     const std::size_t op = pos_;
-    if (accept('^')) return binary(Expression::Kind::kPower, std::move(base), unary(depth + 1), here(op));
+    if (accept('^')) {
+      const int exponent = unary(depth + 1);
+      return push(Expression::Kind::kPower, op, std::max(base, exponent));
+    }
     return base;
   }
 
-  Expression primary(int depth) {
+  int primary(int depth) {
     enter(depth);
     skip_space();
     if (pos_ == text_.size()) fail(pos_, "ends where a number, t, a function or '(' was expected");
@@ -132,43 +155,35 @@ class ExpressionParser {
              (std::isalnum(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '_'))
         ++pos_;
       const std::string name = text_.substr(at, pos_ - at);
-      if (name == "t") {
-        Expression e;
-        e.kind = Expression::Kind::kTime;
-        e.loc = here(at);
-        return e;
-      }
-      if (name == "pi") {
-        Expression e = Expression::number(kPi);
-        e.loc = here(at);
-        return e;
-      }
-      for (const auto& f : ir::kExpressionFunctions) {
-        if (name != f.name) continue;
+      if (name == "t") return push(Expression::Kind::kTime, at, 0);
+      if (name == "pi") return push(Expression::Kind::kNumber, at, 0, kPi);
+      for (std::size_t f = 0; f < std::size(ir::kExpressionFunctions); ++f) {
+        const ir::ExpressionFunction& function = ir::kExpressionFunctions[f];
+        if (name != function.name) continue;
         if (!accept('(')) fail(pos_, "expected '(' after " + name);
-        Expression e;
-        e.kind = Expression::Kind::kCall;
-        e.function = name;
-        e.loc = here(at);
-        e.args.push_back(sum(depth + 1));
-        while (accept(',')) e.args.push_back(sum(depth + 1));
+        int deepest = sum(depth + 1);
+        int count = 1;
+        while (accept(',')) {
+          deepest = std::max(deepest, sum(depth + 1));
+          ++count;
+        }
         if (!accept(')')) fail(pos_, "expected ')' or ',' in the arguments of " + name);
-        if (static_cast<int>(e.args.size()) != f.arity)
-          fail(at, name + " takes " + std::to_string(f.arity) + " argument" + (f.arity == 1 ? "" : "s") +
-                       ", got " + std::to_string(e.args.size()));
-        return e;
+        if (count != function.arity)
+          fail(at, name + " takes " + std::to_string(function.arity) + " argument" +
+                       (function.arity == 1 ? "" : "s") + ", got " + std::to_string(count));
+        return push(Expression::Kind::kCall, at, deepest, 0.0, static_cast<ir::Function>(f));
       }
       fail(at, "unknown name '" + shown(name) + "' (allowed: " + allowed_names() + ")");
     }
     if (accept('(')) {
-      Expression e = sum(depth + 1);
+      const int tree = sum(depth + 1);
       if (!accept(')')) fail(pos_, "expected ')'");
-      return e;
+      return tree;
     }
     fail(at, "unexpected '" + shown(std::string(1, c)) + "'");
   }
 
-  Expression number() {
+  int number() {
     const std::size_t at = pos_;
     while (pos_ < text_.size() && (std::isdigit(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '.')) ++pos_;
     if (pos_ < text_.size() && (text_[pos_] == 'e' || text_[pos_] == 'E')) {
@@ -185,9 +200,7 @@ class ExpressionParser {
     const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
     if (error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(v))
       fail(at, "bad number '" + shown(digits) + "'");
-    Expression e = Expression::number(v);
-    e.loc = here(at);
-    return e;
+    return push(Expression::Kind::kNumber, at, 0, v);
   }
 
   const std::string& text_;
@@ -195,6 +208,7 @@ class ExpressionParser {
   ir::SourceLoc loc_;
   const std::string& what_;
   std::size_t pos_ = 0;
+  std::vector<ir::ExpressionNode> nodes_;  // postfix, as built
 };
 
 }  // namespace

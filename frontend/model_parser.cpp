@@ -38,6 +38,7 @@ void ModelParser::parse(const YAML::Node& root) {
                                  (model_.dimension == 3 ? "" : " and no beams"));
   }
   if (const Field* loads = top.find("loads")) parse_loads(top, *loads);
+  check_expression_budget(top);
   if (const Field* contacts = top.find("contacts")) parse_contacts(top, *contacts);
   if (const Field* links = top.find("links")) parse_links(top, *links);
   if (const Field* constraints = top.find("constraints")) parse_constraints(top, *constraints);
@@ -56,6 +57,37 @@ void ModelParser::parse(const YAML::Node& root) {
   check_something_moves(top);
   if (const Field* simulation = top.find("simulation")) {
     parse_simulation(top.sub(*simulation));
+  }
+}
+
+/// All expressions in t together within ParseLimits::max_expression_nodes,
+/// counted in the order they were read (motions, beam loads, loads).
+void ModelParser::check_expression_budget(const MapView& top) const {
+  std::vector<const Expression*> expressions;
+  for (const Body& body : model_.bodies)
+    if (body.joint.motion) expressions.push_back(&*body.joint.motion);
+  for (const Beam& beam : model_.beams) {
+    for (const BeamPointLoad& load : beam.loads) expressions.push_back(&load.value);
+    for (const BeamMovingLoad& load : beam.moving_loads) expressions.push_back(&load.value);
+  }
+  for (const Load& load : model_.loads) {
+    if (load.type == LoadType::kForce) {
+      expressions.push_back(&load.force[0]);
+      expressions.push_back(&load.force[1]);
+    } else if (load.type == LoadType::kTorque) {
+      expressions.push_back(&load.torque);
+    }
+  }
+  long total = 0;
+  for (const Expression* e : expressions) {
+    total += static_cast<long>(e->nodes().size());
+    if (total <= limits_.max_expression_nodes) continue;
+    const SourceLoc where = e->source().loc.line > 0 ? e->source().loc : e->nodes().back().loc;
+    top.fail(where, (e->source().what.empty() ? std::string("this value") : e->source().what) +
+                        ": the expressions in t hold " + std::to_string(total) +
+                        " numbers, names and operators up to here, more than the limit of " +
+                        std::to_string(limits_.max_expression_nodes) + " for the whole model " +
+                        "(ParseLimits::max_expression_nodes)");
   }
 }
 

@@ -36,6 +36,9 @@ class ModelParser {
   void parse(const YAML::Node& root);
 
  private:
+  /// All expressions in t together within ParseLimits::max_expression_nodes.
+  void check_expression_budget(const MapView& top) const;
+
   // ---- names -------------------------------------------------------------
 
   /// Bodies and beams both name coordinates, so they share one namespace.
@@ -91,6 +94,10 @@ class ModelParser {
   void parse_loads(const MapView& top, const Field& field);
 
   Load parse_load(const MapView& view);
+
+  /// The optional `name:` of a load (an identifier, unique among `names`,
+  /// the loads of the same list); empty when absent.
+  std::string optional_item_name(const MapView& view, std::unordered_map<std::string, SourceLoc>& names) const;
 
   /// The optional `start` / `stop` (s) of a load; stop after start.
   static TimeWindow time_window(const MapView& view);

@@ -189,14 +189,18 @@ void ModelParser::parse_damping(const MapView& view, Beam& beam) {
 
 void ModelParser::parse_beam_loads(const MapView& beam_view, const Field& field, Beam& beam) {
   const auto items = beam_view.list(field);
+  std::unordered_map<std::string, SourceLoc> names;  // point and moving loads share them
   for (std::size_t i = 0; i < items.size(); ++i) {
     const MapView view(file_, items[i],
-                       "beam " + quoted(beam.name) + ": load #" + std::to_string(i + 1), "",
-                       field.value_loc);
+                       "beam " + quoted(beam.name) + ": " +
+                           item_context(items[i], "load", i, limits_.max_name_length),
+                       "", field.value_loc);
     const Field& type = view.require("type");
+    const std::string name = optional_item_name(view, names);
     if (view.choice(type, {"point", "moving"}) == 0) {
-      view.allow({"type", "at", "value", "start", "stop"});
+      view.allow({"name", "type", "at", "value", "start", "stop"});
       BeamPointLoad load;
+      load.name = name;
       load.loc = view.loc();
       const Field& at = view.require("at");
       load.at = view.number(at);
@@ -208,8 +212,9 @@ void ModelParser::parse_beam_loads(const MapView& beam_view, const Field& field,
     }
     // A moving load's `start` is where it is at t0 (m); its time window is
     // the part of the crossing it is on the beam, so it takes no `stop`.
-    view.allow({"type", "value", "speed", "start", "t0"});
+    view.allow({"name", "type", "value", "speed", "start", "t0"});
     BeamMovingLoad load;
+    load.name = name;
     load.loc = view.loc();
     load.value = view.expression(view.require("value"));
     const Field& speed = view.require("speed");
@@ -225,11 +230,26 @@ void ModelParser::parse_beam_loads(const MapView& beam_view, const Field& field,
 }
 
 Adjustment ModelParser::parse_adjustment(const MapView& view) {
-  view.allow({"omega_limit", "margin", "zeta_min", "policy", "scope"});
+  view.allow({"omega_limit", "margin", "zeta_min", "policy", "scope", "tolerance"});
   Adjustment adjustment;
   adjustment.present = true;
   adjustment.loc = view.loc();
-  adjustment.omega_limit = view.positive(view.require("omega_limit"));
+  const Field& omega_limit = view.require("omega_limit");
+  adjustment.omega_limit_loc = omega_limit.value_loc;
+  if (omega_limit.value.IsScalar() && omega_limit.value.Scalar() == "auto") {
+    adjustment.omega_limit_auto = true;
+  } else {
+    adjustment.omega_limit = view.positive(omega_limit);
+  }
+  if (const Field* tolerance = view.find("tolerance")) {
+    if (!adjustment.omega_limit_auto)
+      view.fail(tolerance->key_loc, view.prefixed("tolerance goes with omega_limit: auto (it chooses the limit); "
+                                                  "omega_limit is given here"));
+    adjustment.tolerance = view.positive(*tolerance);
+    if (adjustment.tolerance >= 1.0)
+      view.fail(tolerance->value_loc, view.prefixed(view.what(*tolerance) + " must be < 1, a relative change (got " +
+                                                    shown(tolerance->value.Scalar()) + ")"));
+  }
   if (const Field* margin = view.find("margin")) {
     adjustment.margin = view.number_at_least(*margin, 0.0);
   }
@@ -240,7 +260,11 @@ Adjustment ModelParser::parse_adjustment(const MapView& view) {
                                                shown(zeta->value.Scalar()) + ")"));
     }
   }
-  if (const Field* policy = view.find("policy")) {
+  // The default policy is mass: the cap's roots with the original static
+  // compliance (docs/damping-adjustment.md, "Which policy is the default").
+  adjustment.policy = AdjustmentPolicy::kMass;
+  const Field* policy = view.find("policy");
+  if (policy != nullptr) {
     constexpr AdjustmentPolicy kPolicies[] = {
         AdjustmentPolicy::kCap, AdjustmentPolicy::kPaperEq25, AdjustmentPolicy::kKeepSlow,
         AdjustmentPolicy::kNone, AdjustmentPolicy::kMass};
@@ -249,6 +273,8 @@ Adjustment ModelParser::parse_adjustment(const MapView& view) {
   }
   if (const Field* scope = view.find("scope")) {
     adjustment.scope = view.choice(*scope, {"beam", "joined"}) == 0 ? AdjustmentScope::kBeam : AdjustmentScope::kJoined;
+    // A joined structure takes only the cap, so there the cap is the default.
+    if (adjustment.scope == AdjustmentScope::kJoined && policy == nullptr) adjustment.policy = AdjustmentPolicy::kCap;
     // The joined structure is adjusted in the low-rank form, which needs one
     // uniform cap for every changed mode.
     if (adjustment.scope == AdjustmentScope::kJoined && adjustment.policy != AdjustmentPolicy::kCap) {

@@ -7,12 +7,20 @@ namespace mbfe::frontend {
 
 void ModelParser::parse_bodies(const MapView& top, const Field& field) {
   const auto items = bounded_list(top, field, limits_.max_bodies, "max_bodies");
+  long total_points = 0;
   for (std::size_t i = 0; i < items.size(); ++i) {
     const MapView view(file_, items[i],
                        item_context(items[i], "body", i, limits_.max_name_length), "",
                        field.value_loc);
     model_.bodies.push_back(parse_body(view));
     const Body& body = model_.bodies.back();
+    total_points += static_cast<long>(body.points.size());
+    if (total_points > limits_.max_points) {
+      const NamedPoint& last = body.points.back();
+      view.fail(last.loc, view.prefixed("point '" + last.name + "': the bodies hold " + std::to_string(total_points) +
+                                        " named points up to here, more than the limit of " +
+                                        std::to_string(limits_.max_points) + " (ParseLimits::max_points)"));
+    }
     body_by_name_.emplace(body.name, static_cast<int>(i));
     auto& points = point_by_name_.emplace_back();
     for (std::size_t k = 0; k < body.points.size(); ++k) {
@@ -114,10 +122,27 @@ std::vector<NamedPoint> ModelParser::parse_points(const MapView& body, const Fie
 
 void ModelParser::parse_loads(const MapView& top, const Field& field) {
   const auto items = top.list(field);
+  std::unordered_map<std::string, SourceLoc> names;
   for (std::size_t i = 0; i < items.size(); ++i) {
-    const MapView view(file_, items[i], "load #" + std::to_string(i + 1), "", field.value_loc);
-    model_.loads.push_back(parse_load(view));
+    const MapView view(file_, items[i], item_context(items[i], "load", i, limits_.max_name_length), "",
+                       field.value_loc);
+    Load load = parse_load(view);
+    load.name = optional_item_name(view, names);
+    model_.loads.push_back(std::move(load));
   }
+}
+
+std::string ModelParser::optional_item_name(const MapView& view,
+                                            std::unordered_map<std::string, SourceLoc>& names) const {
+  const Field* name = view.find("name");
+  if (!name) return "";
+  const std::string text = view.identifier(*name, limits_.max_name_length);
+  const auto [it, inserted] = names.emplace(text, name->value_loc);
+  if (!inserted) {
+    view.fail(name->value_loc, view.prefixed("duplicate load name (first used at line " +
+                                             std::to_string(it->second.line) + ")"));
+  }
+  return text;
 }
 
 Load ModelParser::parse_load(const MapView& view) {
@@ -125,7 +150,7 @@ Load ModelParser::parse_load(const MapView& view) {
   load.loc = view.loc();
   const int type = view.choice(view.require("type"), {"force", "torque", "spring_damper"});
   if (type == 0) {
-    view.allow({"type", "body", "point", "value", "start", "stop"});
+    view.allow({"name", "type", "body", "point", "value", "start", "stop"});
     load.type = LoadType::kForce;
     load.body = existing_body(view, view.require("body"));
     if (const Field* point = view.find("point")) {
@@ -135,14 +160,14 @@ Load ModelParser::parse_load(const MapView& view) {
     else load.force = view.expression_pair(view.require("value"));
     load.window = time_window(view);
   } else if (type == 1) {
-    view.allow({"type", "body", "value", "start", "stop"});
+    view.allow({"name", "type", "body", "value", "start", "stop"});
     load.type = LoadType::kTorque;
     load.body = existing_body(view, view.require("body"));
     if (model_.dimension == 3) parse_spatial_load_value(view, load);
     else load.torque = view.expression(view.require("value"));
     load.window = time_window(view);
   } else {
-    view.allow({"type", "joint", "stiffness", "damping", "rest", "start", "stop"});
+    view.allow({"name", "type", "joint", "stiffness", "damping", "rest", "start", "stop"});
     load.type = LoadType::kSpringDamper;
     const Field& joint = view.require("joint");
     load.body = existing_body(view, joint);

@@ -13,7 +13,8 @@ void ModelParser::parse_contacts(const MapView& top, const Field& field) {
     const MapView view(file_, items[i],
                        item_context(items[i], "contact", i, limits_.max_name_length), "",
                        field.value_loc);
-    view.allow({"name", "type", "body", "point", "beam", "at", "stiffness", "damping", "unilateral", "side"});
+    view.allow({"name", "type", "body", "point", "beam", "at", "law", "stiffness", "coefficient", "damping",
+                "unilateral", "side"});
     Contact contact;
     contact.loc = view.loc();
     const Field& name = view.require("name");
@@ -26,12 +27,24 @@ void ModelParser::parse_contacts(const MapView& top, const Field& field) {
     const Field& type = view.require("type");
     contact.type = static_cast<ContactType>(view.choice(type, {"pin", "slider_pin", "slider_spring"}));
     if (contact.type == ContactType::kSliderSpring) {
-      contact.stiffness = view.positive(view.require("stiffness"));
+      if (const Field* law = view.find("law"))
+        contact.law = view.choice(*law, {"linear", "hertz"}) == 1 ? ContactLaw::kHertz : ContactLaw::kLinear;
+      // Each law takes its own constant, and only its own.
+      const char* constant = contact.law == ContactLaw::kHertz ? "coefficient" : "stiffness";
+      const char* other = contact.law == ContactLaw::kHertz ? "stiffness" : "coefficient";
+      if (const Field* f = view.find(other)) {
+        view.fail(f->key_loc, view.prefixed(std::string("'") + other + "' is not for law " +
+                                            (contact.law == ContactLaw::kHertz ? "hertz" : "linear") +
+                                            "; expected '" + constant + "' (" +
+                                            (contact.law == ContactLaw::kHertz ? "N/m^1.5" : "N/m") + ")"));
+      }
+      const double value = view.positive(view.require(constant));
+      (contact.law == ContactLaw::kHertz ? contact.coefficient : contact.stiffness) = value;
       contact.damping = at_least_or(view, "damping", 0.0);
       if (const Field* u = view.find("unilateral")) contact.unilateral = view.boolean(*u);
       if (const Field* side = view.find("side")) contact.from_below = view.choice(*side, {"above", "below"}) == 1;
     } else {
-      for (const char* key : {"stiffness", "damping", "unilateral", "side"}) {
+      for (const char* key : {"law", "stiffness", "coefficient", "damping", "unilateral", "side"}) {
         if (const Field* f = view.find(key)) {
           view.fail(f->key_loc, view.prefixed(std::string("'") + key +
                                               "' is only for a slider_spring contact"));

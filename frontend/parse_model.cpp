@@ -18,6 +18,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "frontend/model_overrides.h"
 #include "frontend/model_parser.h"
 #include "frontend/sha256.h"
 #include "frontend/text_guard.h"
@@ -57,7 +58,7 @@ std::string yaml_message(const YAML::Exception& error) {
 }  // namespace
 
 Model parse_model_text(const std::string& text, const std::string& display_path,
-                       const ParseLimits& limits) {
+                       const ParseLimits& limits, const ir::ModelOverrides& overrides) {
   if (text.size() > limits.max_file_bytes) {
     throw ModelError(display_path, {1, 1},
                      "the file is " + std::to_string(text.size()) +
@@ -73,10 +74,15 @@ Model parse_model_text(const std::string& text, const std::string& display_path,
   }
   try {
     const YAML::Node root = load_single_document(text, display_path);
+    const std::vector<AppliedOverride> applied = apply_overrides(root, overrides, display_path);
     Model model;
     model.source_path = display_path;
-    model.source_sha256 = sha256_hex(text);
-    ModelParser(display_path, limits, model).parse(root);
+    model.source_sha256 = overridden_sha256(text, overrides);
+    try {
+      ModelParser(display_path, limits, model).parse(root);
+    } catch (const ModelError& error) {
+      throw blame_override(error, applied);
+    }
     return model;
   } catch (const ModelError&) {
     throw;
@@ -89,7 +95,7 @@ Model parse_model_text(const std::string& text, const std::string& display_path,
   }
 }
 
-Model load_model_file(const std::string& path, const ParseLimits& limits) {
+Model load_model_file(const std::string& path, const ParseLimits& limits, const ir::ModelOverrides& overrides) {
   struct stat info {};
   if (::stat(path.c_str(), &info) != 0) {
     throw ModelError(path, {}, std::string("cannot read: ") + std::strerror(errno));
@@ -113,7 +119,7 @@ Model load_model_file(const std::string& path, const ParseLimits& limits) {
     text.append(buffer.data(), static_cast<std::size_t>(in.gcount()));
   }
   if (in.bad()) throw ModelError(path, {}, "cannot read: I/O error");
-  return parse_model_text(text, path, limits);
+  return parse_model_text(text, path, limits, overrides);
 }
 
 }  // namespace mbfe::frontend

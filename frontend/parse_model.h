@@ -5,13 +5,20 @@
 
 #include "ir/model.h"
 #include "ir/model_error.h"
+#include "ir/model_override.h"
 
 namespace mbfe::frontend {
 
 /// Upper bounds that keep an absurd file from exhausting the machine.
 struct ParseLimits {
   std::size_t max_file_bytes = 16u << 20;  // 16 MiB
-  int max_bodies = 2000;
+  /// The generated solver of a chain of 200 bodies with a point on each
+  /// compiles in about 35 s at -O3 (docs/performance.md, "Model size and
+  /// compile time"); the compile grows faster than the body count.
+  int max_bodies = 200;
+  /// Named points of all bodies together: each gets a position kernel as
+  /// long as its body's path to the ground.
+  int max_points = 200;
   int max_beam_elements = 200000;   // per beam
   long max_total_beam_dofs = 2000000;
   std::size_t max_name_length = 128;
@@ -20,16 +27,24 @@ struct ParseLimits {
   int max_nesting_depth = 64;
   /// YAML values (scalars and collections) in the file, estimated before
   /// yaml-cpp builds its tree, which costs it about 500 bytes and 5 us per
-  /// value: 100,000 is twice a 2000-body model and bounds the tree near 50 MB.
+  /// value: 100,000 bounds the tree near 50 MB (a body takes about a dozen).
   long max_yaml_values = 100000;
+  /// Numbers, names and operators of all expressions in t together (as many
+  /// as one expression may hold, kMaxExpressionNodes, frontend/expression_parser.h).
+  /// The loads on bodies all land in one generated function, whose compile
+  /// time grows as its square: 10,000 nodes add about 5,000 operations to it.
+  long max_expression_nodes = 10000;
 };
 
-/// Reads and validates `path`. @throws ir::ModelError on any problem, with the
-/// position of the offending key or value.
-ir::Model load_model_file(const std::string& path, const ParseLimits& limits = {});
+/// Reads and validates `path`, with `overrides` (`--set PATH=VALUE`) written
+/// into it first (frontend/model_overrides.h). @throws ir::ModelError on any
+/// problem, with the position of the offending key or value; an error at a
+/// value an override wrote says so.
+ir::Model load_model_file(const std::string& path, const ParseLimits& limits = {},
+                          const ir::ModelOverrides& overrides = {});
 
 /// Same, from text already in memory; `display_path` is used in messages.
 ir::Model parse_model_text(const std::string& text, const std::string& display_path,
-                       const ParseLimits& limits = {});
+                           const ParseLimits& limits = {}, const ir::ModelOverrides& overrides = {});
 
 }  // namespace mbfe::frontend

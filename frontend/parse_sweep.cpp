@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "frontend/model_overrides.h"
 #include "frontend/parse_model.h"
 #include "frontend/text_guard.h"
 #include "frontend/yaml_reader.h"
@@ -268,6 +269,18 @@ std::string sweep_model_path(const ir::Sweep& sweep) {
   const std::filesystem::path model(sweep.model_path);
   if (model.is_absolute()) return model.string();
   return (std::filesystem::path(sweep.source_path).parent_path() / model).lexically_normal().string();
+}
+
+std::string overridden_sweep_model(const ir::Sweep& sweep, const std::string& model_text,
+                                   const ir::ModelOverrides& overrides) {
+  if (overrides.empty()) return model_text;
+  const std::string path = sweep_model_path(sweep);
+  parse_model_text(model_text, path, ParseLimits{}, overrides);  // every error located in the file
+  YAML::Node root = YAML::Clone(load_model_yaml(sweep, model_text));
+  apply_overrides(root, overrides, path);
+  YAML::Emitter out;
+  out << root;
+  return std::string(out.c_str()) + "\n";
 }
 
 void check_sweep_paths(const ir::Sweep& sweep, const std::string& model_text) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "ir/model_error.h"
+#include "ir/model_override.h"
 #include "ir/sweep.h"
 
 namespace mbfe::frontend {
@@ -23,6 +24,13 @@ std::string sweep_model_path(const ir::Sweep& sweep);
 /// ParseLimits::max_file_bytes. @throws ir::ModelError at the sweep's
 /// `model:` value naming the file and why.
 std::string read_sweep_model(const ir::Sweep& sweep);
+
+/// The model text with `overrides` (`mbfe sweep --set`) written in, as YAML,
+/// the text every point then varies (unchanged when there are none).
+/// @throws ir::ModelError in the model file, naming the --set, for a PATH the
+///         file does not have or a value the model refuses.
+std::string overridden_sweep_model(const ir::Sweep& sweep, const std::string& model_text,
+                                   const ir::ModelOverrides& overrides);
 
 /// Checks that every `vary` path names an existing key of the model text.
 /// @throws ir::ModelError at the path in the sweep file ("beam 'deck' has no

@@ -282,9 +282,7 @@ ir::Expression MapView::expression(const Field& field) const {
   double number = 0.0;
   std::string why;
   if (!is_quoted(value) && parse_double(value.Scalar(), number, why)) {
-    ir::Expression e = ir::Expression::number(number);
-    e.loc = field.value_loc;
-    return e;
+    return ir::Expression::number(number, field.value_loc);
   }
   ir::SourceLoc start = field.value_loc;
   if (is_quoted(value) && start.line > 0) ++start.column;  // past the opening quote

@@ -114,6 +114,7 @@ struct Load {
   double damping = 0.0;    // N s/m or N m s/rad
   double rest = 0.0;       // m or rad
   SourceLoc loc;
+  std::string name;  // optional (empty): how --set and sweeps address it
 };
 
 enum class SupportType { kPinned, kClamped, kSpring };
@@ -139,6 +140,7 @@ struct BeamPointLoad {
   int node = -1;       // resolved node index
   TimeWindow window;
   SourceLoc loc;
+  std::string name;  // optional (empty): how --set and sweeps address it
 };
 
 /// A transverse force travelling along a beam: `value` (an expression in t)
@@ -150,6 +152,7 @@ struct BeamMovingLoad {
   double start = 0.0;  // m, position at t = t0
   double t0 = 0.0;     // s
   SourceLoc loc;
+  std::string name;  // optional (empty): how --set and sweeps address it
 };
 
 /// A point mass at a node (a clamp, a dropper's half): adds to M on w.
@@ -173,10 +176,15 @@ enum class AdjustmentScope { kBeam, kJoined };
 /// Modal adjustment of damping (Section 6 of the paper; docs/damping-adjustment.md).
 struct Adjustment {
   bool present = false;          // the beam has an `adjustment:` block
-  double omega_limit = 0.0;      // rad/s
+  double omega_limit = 0.0;      // rad/s (with omega_limit_auto: chosen when the model is assembled)
+  /// `omega_limit: auto`: the lowest limit whose accuracy estimate stays
+  /// below `tolerance` (docs/damping-adjustment.md, "Choosing omega_limit for a tolerance").
+  bool omega_limit_auto = false;
+  double tolerance = 0.01;       // the largest estimate allowed with omega_limit_auto (relative)
+  SourceLoc omega_limit_loc;     // the omega_limit value, for messages
   double margin = 0.1;           // the paper's l
   double zeta_min = 0.0;         // damping-ratio floor for oscillatory modes
-  AdjustmentPolicy policy = AdjustmentPolicy::kCap;
+  AdjustmentPolicy policy = AdjustmentPolicy::kCap;  // a block without `policy:` parses as kMass
   AdjustmentScope scope = AdjustmentScope::kBeam;
   SourceLoc loc;
   /// The block is present and changes something (its policy is not `none`).
@@ -213,6 +221,11 @@ enum class ContactType { kPin, kSliderPin, kSliderSpring };
 /// A body vertex pinned to, or sliding along, a beam's neutral axis: pin and
 /// slider_pin are constraints (docs/contacts.md); slider_spring is a penalty
 /// force N = k delta + c delta' with delta = w(s) - y_P, no constraint.
+/// The force law of a slider_spring: linear N = k delta + c delta', or
+/// Hertz's N = C_H delta^1.5 + c delta' (a wheel on a rail; zero unless the
+/// point penetrates).
+enum class ContactLaw { kLinear, kHertz };
+
 struct Contact {
   std::string name;
   ContactType type = ContactType::kPin;
@@ -220,11 +233,13 @@ struct Contact {
   int point = -1;  // index into Body::points
   int beam = -1;   // index into Model::beams
   double at = 0.0; // m along the beam (pin only)
-  double stiffness = 0.0;  // N/m (slider_spring)
+  double stiffness = 0.0;  // N/m (slider_spring, law linear; 0 for hertz)
   double damping = 0.0;    // N s/m (slider_spring)
   bool unilateral = false; // slider_spring: compression only (lift-off)
   bool from_below = false; // slider_spring: the point presses from the +w side (a pantograph under a wire)
   SourceLoc loc;
+  ContactLaw law = ContactLaw::kLinear;  // slider_spring: how N follows delta
+  double coefficient = 0.0;  // N/m^1.5 (slider_spring, law hertz: N = coefficient delta^1.5)
   bool is_constraint() const { return type != ContactType::kSliderSpring; }
 };
 

@@ -10,6 +10,7 @@
 # Needs clang and libclang-rt-14-dev (MBFE_WITH_FUZZ=1 scripts/install-deps.sh).
 # Environment:
 #   MBFE_FUZZ_SECONDS  total fuzzing time (default 120)
+#   MBFE_FUZZ_MAX_LEN  longest input in bytes (default 131072)
 #   MBFE_FUZZ_BUILD_DIR  build folder (default build-fuzz)
 #   MBFE_JOBS          parallel compile jobs (default: nproc)
 set -euo pipefail
@@ -19,6 +20,10 @@ if [[ "${MBFE_WITH_FUZZ:-0}" == 1 ]]; then
   scripts/install-deps.sh
 fi
 seconds="${MBFE_FUZZ_SECONDS:-120}"
+# Inputs up to 128 KiB: a sum of 60,000 terms (120 KB) once crashed the
+# generator, so the fuzzer must be able to write inputs that long; the seeds
+# hold long chains for it to grow (tests/fuzz/corpus/v_long_*.yaml).
+max_len="${MBFE_FUZZ_MAX_LEN:-131072}"
 build_dir="${MBFE_FUZZ_BUILD_DIR:-build-fuzz}"
 jobs="${MBFE_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 cxx="${MBFE_FUZZ_CXX:-clang++}"
@@ -30,7 +35,8 @@ flags=(-std=c++17 -O1 -g -fno-omit-frame-pointer
        -DMBFE_GENERATOR_VERSION="\"${version}\"" -I.)
 read -r -a ginac_cflags <<<"$(pkg-config --cflags ginac)"
 read -r -a ginac_libs <<<"$(pkg-config --libs ginac)"
-flags+=("${ginac_cflags[@]}")
+read -r -a eigen_cflags <<<"$(pkg-config --cflags eigen3)"
+flags+=("${ginac_cflags[@]}" "${eigen_cflags[@]}")
 
 sources=(ir/*.cpp frontend/*.cpp generator/symbolic/*.cpp generator/emit/*.cpp tests/fuzz/model_fuzz.cpp)
 mkdir -p "$build_dir/obj" "$build_dir/corpus" "$build_dir/artifacts"
@@ -67,7 +73,7 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/tests/support/lsan.supp:print_suppressions=0}"
 set +e
 "$build_dir/model_fuzz" "$build_dir/corpus" "${seeds[@]}" \
-  -dict=tests/fuzz/model.dict -max_len=4096 -rss_limit_mb=2048 -timeout=10 \
+  -dict=tests/fuzz/model.dict -max_len="$max_len" -rss_limit_mb=2048 -timeout=10 \
   -max_total_time="$seconds" -print_final_stats=1 -artifact_prefix="$build_dir/artifacts/" \
   >"$build_dir/fuzz.log" 2>&1
 status=$?

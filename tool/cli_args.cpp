@@ -1,11 +1,22 @@
 #include "tool/cli_args.h"
 
+#include <map>
+
 #include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 
 namespace mbfe::tool {
+
+std::string request_flag(const std::string& field) {
+  static const std::map<std::string, std::string> flags = {
+      {"integrator", "--integrator"}, {"step", "--step"},       {"t_end", "--t-end"},
+      {"every", "--every"},           {"adjust", "--adjust"},   {"probes", "--probe"},
+      {"formulation", "--formulation"}, {"static_start", "--start"}, {"strict", "--strict"}};
+  const auto it = flags.find(field);
+  return it == flags.end() ? field : it->second;
+}
 
 ParsedArgs::ParsedArgs(const std::vector<std::string>& args, const std::set<std::string>& value_flags,
                        const std::set<std::string>& bool_flags) {
@@ -34,6 +45,7 @@ ParsedArgs::ParsedArgs(const std::vector<std::string>& args, const std::set<std:
         if (i + 1 >= args.size()) throw UsageError("flag --" + name + " needs a value");
         values_[name] = args[++i];
       }
+      every_value_[name].push_back(values_[name]);
     } else {
       throw UsageError("unknown flag " + arg + " (see --help)");
     }
@@ -48,6 +60,23 @@ std::optional<std::string> ParsedArgs::value(const std::string& flag) const {
   auto it = values_.find(flag);
   if (it == values_.end()) return std::nullopt;
   return it->second;
+}
+
+std::vector<std::string> ParsedArgs::values(const std::string& flag) const {
+  auto it = every_value_.find(flag);
+  return it == every_value_.end() ? std::vector<std::string>{} : it->second;
+}
+
+ir::ModelOverrides model_overrides(const ParsedArgs& parsed) {
+  ir::ModelOverrides overrides;
+  for (const std::string& assignment : parsed.values("set")) {
+    ir::ModelOverride o = ir::split_override(assignment);
+    if (o.path.empty())
+      throw UsageError("--set: expected PATH=VALUE (e.g. --set loads.front_susp.stiffness=2e6), got '" + assignment +
+                       "'");
+    overrides.push_back(std::move(o));
+  }
+  return overrides;
 }
 
 double parse_number(const std::string& text, const std::string& what) {

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "ir/model_override.h"
+
 namespace mbfe::tool {
 
 /// Bad flags or values on the command line; printed as `mbfe <cmd>: <what>`.
@@ -18,6 +20,11 @@ class UsageError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// The flag that sets a field of a runtime::SimulationRequest ("step" ->
+/// "--step", "t_end" -> "--t-end", "probes" -> "--probe"); the field's own
+/// name for one no flag sets.
+std::string request_flag(const std::string& field);
 
 class ParsedArgs {
  public:
@@ -28,7 +35,10 @@ class ParsedArgs {
              const std::set<std::string>& bool_flags);
 
   bool has(const std::string& flag) const;
+  /// The last value given for `flag`.
   std::optional<std::string> value(const std::string& flag) const;
+  /// Every value given for a repeatable flag (`--set A=1 --set B=2`), in order.
+  std::vector<std::string> values(const std::string& flag) const;
   /// The value parsed as a finite double. @throws UsageError otherwise.
   std::optional<double> number(const std::string& flag) const;
   /// Comma-separated finite doubles ("0.1,0.2"). @throws UsageError otherwise.
@@ -37,9 +47,14 @@ class ParsedArgs {
 
  private:
   std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> every_value_;
   std::set<std::string> bools_;
   std::vector<std::string> positional_;
 };
+
+/// The `--set PATH=VALUE` flags, in order. @throws UsageError for one
+/// without '=' or with an empty PATH.
+ir::ModelOverrides model_overrides(const ParsedArgs& parsed);
 
 /// Parses a finite double; `what` names it in the error message.
 double parse_number(const std::string& text, const std::string& what);

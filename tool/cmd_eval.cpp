@@ -6,17 +6,18 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "runtime/simulation/assembled_model.h"
 #include "api/solver_cache.h"
 #include "frontend/parse_model.h"
 #include "ir/coordinate_layout.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/json_text.h"
+#include "api/json_text.h"
 
 namespace mbfe::tool {
 
 namespace {
-constexpr const char* kHelp = R"(Usage: mbfe eval MODEL.yaml --q v1,v2,... --qd v1,v2,... [--qc ...] [--qcd ...] [--t T] [--json]
+constexpr const char* kHelp = R"(Usage: mbfe eval MODEL.yaml --q v1,v2,... --qd v1,v2,... [--qc ...] [--qcd ...] [--t T] [--set PATH=VALUE] [--json]
 
 Evaluates the generated solver at one state: the mass matrix M(q), the
 velocity-dependent inertial terms F(q, q') and the generalized forces
@@ -42,9 +43,14 @@ loops (`constraints:`, planar or spatial) adds
   "loops": {"Phi": [...], "J": [[...]], "gamma": [...]}
 with Phi' = J qd and J qd' = gamma (docs/model-format.md, "Closed loops").
 
+--set PATH=VALUE (repeatable) replaces a value of the model file before it is
+read, as a sweep's vary paths address it (list items by their name:); errors
+point into the file and name the --set.
+
 Examples:
   mbfe eval models/double_pendulum.yaml --q 0.3,-0.2 --qd 1,0 --json
   mbfe eval models/double_pendulum_beam.yaml --q -1.38,-0.93 --qd 0.1,0 --json
+  mbfe eval models/double_pendulum.yaml --set bodies.link2.mass=2 --q 0.3,-0.2 --json
 )";
 
 nlohmann::json rows_of(const Eigen::MatrixXd& m) {
@@ -121,18 +127,19 @@ int eval_generated_kernels(const ir::Model& model, const ParsedArgs& parsed) {
 }  // namespace
 
 int cmd_eval(const Args& args) {
-  const ParsedArgs parsed(args, {"q", "qd", "t", "qc", "qcd"}, {"help", "json", "quiet"});
+  const ParsedArgs parsed(args, {"q", "qd", "t", "qc", "qcd", "set"}, {"help", "json", "quiet"});
   if (parsed.has("help")) {
     std::cout << kHelp;
     return 0;
   }
   if (parsed.positional().size() != 1) throw UsageError("expected one model file (see --help)");
   {
-    const ir::Model ir = frontend::load_model_file(parsed.positional()[0]);
+    const ir::Model ir = frontend::load_model_file(parsed.positional()[0], {}, model_overrides(parsed));
     if (ir.dimension == 3 || !ir.constraints.empty()) return eval_generated_kernels(ir, parsed);
   }
   LoadOptions load;
   load.quiet = parsed.has("quiet") || parsed.has("json");
+  load.overrides = model_overrides(parsed);
   const Model model = Model::load(parsed.positional()[0], load);
   State state;
   state.q = parsed.numbers("q").value_or(std::vector<double>{});

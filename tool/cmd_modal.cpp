@@ -9,12 +9,14 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "runtime/coupled/tangent_spectrum.h"
+#include "runtime/simulation/assembled_model.h"
 #include "frontend/parse_model.h"
 #include "runtime/damping/beam_model.h"
 #include "runtime/errors/invalid_input.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/json_text.h"
+#include "api/json_text.h"
 #include "tool/linearization_notice.h"
 #include "tool/modal_report.h"
 #include "tool/plot_spectrum.h"
@@ -131,7 +133,8 @@ int cmd_modal(const Args& args) {
     for (const ir::Beam& b : m.beams) coupled_any_adjustment = coupled_any_adjustment || b.adjustment.active();
     const Model model = Model::load(path);
     const int coordinates = static_cast<int>(m.bodies.size()) + model.assembled().beams().dof;
-    if (coordinates <= runtime::kMaxLinearizedCoordinates)
+    if (coordinates <= runtime::kMaxLinearizedCoordinates && coordinates > kLinearizationNoticeCoordinates &&
+        !runtime::linearized_from_tangents(model.assembled()))
       std::cerr << linearization_notice("modal", coordinates, coupled_any_adjustment ? 2 : 1);
     try {
       coupled_original_model = model.spectrum(false);
@@ -201,7 +204,9 @@ int cmd_modal(const Args& args) {
     print_beam_text(std::cout, *chosen[i], results[i], parsed.has("all"));
   }
   if (coupled) {
-    const int dof = static_cast<int>(coupled_original.eigenvalues.size()) / 2;
+    const int dof = coupled_original_model.coordinates;
+    const std::string ends = std::to_string(runtime::kFastestEigenvalues) + " fastest and " +
+                             std::to_string(runtime::kSlowestEigenvalues) + " slowest eigenvalues, by Arnoldi";
     std::cout << "\ncoupled system '" << m.name << "': linearised, partitioned (eqs (16)-(17)) at the initial "
               << "state; the contacts couple the beams to the bodies\n";
     std::cout << "original (Rayleigh)\n";
@@ -213,13 +218,13 @@ int cmd_modal(const Args& args) {
                                   " eigenvalues with Re > 0 (the motion leaves the initial state) left out of h_max"
                             : std::string();
     };
-    std::cout << "summary: " << spectrum_summary(coupled_original_model.limiting, dof)
+    std::cout << "summary: " << spectrum_summary(coupled_original_model.limiting, dof, ends)
               << growing_note(coupled_original_model) << "\n";
     if (coupled_any_adjustment) {
       std::cout << "adjusted\n";
       for (const std::string& line : spectrum_table_lines(coupled_adjusted, parsed.has("all")))
         std::cout << line << "\n";
-      std::cout << "summary: " << spectrum_summary(coupled_adjusted_model.limiting, dof)
+      std::cout << "summary: " << spectrum_summary(coupled_adjusted_model.limiting, dof, ends)
                 << growing_note(coupled_adjusted_model) << "\n";
     }
   }

@@ -4,16 +4,20 @@
 #include <fstream>
 #include <memory>
 #include <iostream>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "api/mbfe.h"
+#include "tool/adjustment_check.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "tool/file_checks.h"
-#include "tool/json_text.h"
-#include "tool/results_output.h"
-#include "tool/vtk_animation.h"
+#include "tool/interrupt_guard.h"
+#include "tool/progress_line.h"
+#include "api/results_output.h"
+#include "api/run_record.h"
+#include "api/vtk_animation.h"
 
 namespace mbfe::tool {
 
@@ -51,7 +55,10 @@ Options:
   --adjust on|off    beam and coupled models: use the modal adjustment of
                      damping (default: on when a beam has an adjustment block)
   --probe BEAM@S     beam and coupled models: displacement at S m along BEAM
-                     (several as a comma-separated list)
+                     (several as a comma-separated list); BEAM@S:acc its
+                     acceleration (m/s^2), BODY:acc a body's joint coordinate
+                     acceleration (coupled models; m/s^2 or rad/s^2), both as
+                     columns at the end of a coupled model's row
   --formulation F    coupled models: partitioned (default; eqs (16)-(17),
                      |Phi| closed by Newton at every step) or augmented
                      (multipliers; a cross-check, |Phi| drifts)
@@ -68,6 +75,17 @@ Options:
   --vtk-scale S      deflections drawn S times enlarged (default 1)
   --vtk-frames N     at most N frames, evenly spaced in time (default 200,
                      at most 10000)
+  --check-adjustment T
+                     after an adjusted run, run its first T s again with the
+                     original model (generalized_alpha, at least 2000 steps)
+                     and report how far the contact forces and displacements
+                     are from it (stderr, and "adjustment_check" in the
+                     sidecar); docs/damping-adjustment.md
+  --set PATH=VALUE   replace a value of the model file before it is read
+                     (repeatable): PATH as a sweep's vary paths, list items by
+                     their name: (loads.front_susp.stiffness=2e6,
+                     beams.bridge.section.inertia=0.3); errors point into the
+                     file and name the --set
   --strict           an initial state that violates the contacts is an error
                      (exit 2) instead of being projected onto them
   --quiet            no progress or cache messages on stderr
@@ -83,6 +101,9 @@ Examples:
   mbfe simulate models/double_pendulum.yaml --integrator rk4 --step 1e-3 --t-end 2 --out pendulum.csv
   mbfe simulate models/paper_platform.yaml --integrator forward_euler --step 1.4e-5 --t-end 1 --out platform.csv
   mbfe simulate models/bridge_moving_mass.yaml --probe deck@10 --out crossing.csv
+  mbfe simulate models/vehicle_bridge_30m.yaml --integrator rk4 --step 1e-3 --check-adjustment 0.2 --out v.csv
+  mbfe simulate models/bridge_moving_mass.yaml --probe deck@10,deck@10:acc,wheel:acc --out acc.csv
+  mbfe simulate models/bridge_moving_mass.yaml --set beams.deck.section.inertia=0.3 --out stiffer.csv
 )";
 
 std::vector<std::string> split_commas(const std::string& text) {
@@ -96,19 +117,20 @@ std::vector<std::string> split_commas(const std::string& text) {
   }
 }
 
-// The request from the flags, the model's `simulation:` block filling in.
-runtime::SimulationRequest request_of(const ParsedArgs& parsed, const ir::Model& model) {
-  runtime::SimulationRequest request;
-  try {
-    request.integrator = runtime::parse_integrator(parsed.value("integrator").value_or(model.simulation.integrator));
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
+// The request of the model's `simulation:` block, the flags overriding it.
+// Ranges (a step > 0, ...) are the runtime's to check: its errors name the
+// request's fields, which main() says as these flags.
+runtime::SimulationRequest request_of(const ParsedArgs& parsed, const Model& model) {
+  runtime::SimulationRequest request = model.request();
+  if (const auto integrator = parsed.value("integrator")) {
+    try {
+      request.integrator = runtime::parse_integrator(*integrator);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
   }
-  request.step = parsed.number("step").value_or(model.simulation.step);
-  request.t_end = parsed.number("t-end").value_or(model.simulation.t_end);
-  if (!(request.step > 0)) throw UsageError("--step must be > 0");
-  if (!(request.t_end > 0)) throw UsageError("--t-end must be > 0");
-  request.quiet = parsed.has("quiet");
+  if (const auto step = parsed.number("step")) request.step = *step;
+  if (const auto t_end = parsed.number("t-end")) request.t_end = *t_end;
   if (const auto rho = parsed.number("rho-inf")) {
     if (*rho < 0 || *rho > 1) throw UsageError("--rho-inf must be in [0, 1]");
     request.integrator.rho_inf = *rho;
@@ -156,69 +178,35 @@ class TeeObserver : public runtime::SimulationObserver {
   runtime::SimulationObserver& b_;
 };
 
-/// FILE.csv.json: what the CSV holds and how the run ended, for whoever
-/// reads the CSV later (a person, a notebook, a sweep).
-void write_sidecar(const std::string& csv_path, const Model& model, const runtime::SimulationRequest& request,
-                   const runtime::SimulationReport& report, const ResultsObserver& observer, std::size_t rows) {
-  // Output into a device or a pipe (--out /dev/null): no file to describe,
-  // and no "/dev/null.json" to leave behind.
-  std::error_code not_a_file;
-  if (!std::filesystem::is_regular_file(csv_path, not_a_file)) return;
-  nlohmann::json j;
-  j["mbfe"] = MBFE_GENERATOR_VERSION;
-  j["model"] = {{"name", model.ir().name}, {"file", model.ir().source_path}, {"sha256", model.ir().source_sha256}};
-  j["integrator"] = request.integrator.name;
-  j["step"] = request.step;
-  j["t_end"] = request.t_end;
-  j["variant"] = report.variant;
-  nlohmann::json columns = nlohmann::json::array();
-  const runtime::OutputLayout& layout = observer.layout();
-  for (std::size_t k = 0; k < layout.columns.size(); ++k)
-    columns.push_back({{"name", layout.columns[k]}, {"unit", k < layout.units.size() ? layout.units[k] : ""}});
-  j["columns"] = columns;
-  j["rows"] = rows;
-  const char* status = "completed";
-  switch (report.run.status) {
-    case runtime::SimulationStatus::kCompleted: break;
-    case runtime::SimulationStatus::kDiverged: status = "diverged"; break;
-    case runtime::SimulationStatus::kInterrupted: status = "interrupted"; break;
-    case runtime::SimulationStatus::kFailed: status = "failed"; break;
-  }
-  j["status"] = report.message.empty() ? "completed" : status;
-  j["message"] = report.message;
-  j["steps"] = report.run.steps;
-  j["t_reached"] = report.run.t;
-  j["wall_seconds"] = report.run.wall_seconds;
-  if (report.run.newton.iterations > 0)
-    j["newton"] = {{"iterations", report.run.newton.iterations},
-                   {"factorizations", report.run.newton.factorizations}};
-  nlohmann::json springs = nlohmann::json::array();
-  for (const runtime::SpringContactTally& c : report.springs)
-    springs.push_back({{"name", c.name}, {"lift_offs", c.lift_offs}, {"time_off", c.time_off}});
-  if (!springs.empty()) j["springs"] = springs;
-  nlohmann::json links = nlohmann::json::array();
-  for (const runtime::LinkSlackTally& l : report.links)
-    links.push_back({{"name", l.name}, {"slackenings", l.slackenings}, {"time_slack", l.time_slack}});
-  if (!links.empty()) j["links"] = links;
-  std::ofstream out(csv_path + ".json");
-  out << json_text(j, 2) << "\n";
-}
-
-/// "mbfe: contact 'tyre': 2 lift-offs, 0.0123 s off contact" per slider_spring.
-void print_spring_tally(const runtime::SimulationReport& report) {
+/// "mbfe: contact 'tyre': 2 lift-offs, 0.0123 s off contact" per
+/// slider_spring, and one line for the links that can go slack (a catenary
+/// has dozens of droppers: each one's figures are in the record beside the
+/// results).
+void print_tallies(const runtime::SimulationReport& report, const std::optional<std::string>& out) {
   for (const runtime::SpringContactTally& c : report.springs)
     std::cerr << "mbfe: contact '" << c.name << "': " << c.lift_offs << " lift-off" << (c.lift_offs == 1 ? "" : "s")
               << ", " << c.time_off << " s off contact while over the beam\n";
-  for (const runtime::LinkSlackTally& l : report.links)
-    std::cerr << "mbfe: link '" << l.name << "': slack " << l.slackenings << " time" << (l.slackenings == 1 ? "" : "s")
-              << ", " << l.time_slack << " s in all\n";
+  if (report.links.empty()) return;
+  int went_slack = 0;
+  const runtime::LinkSlackTally* longest = nullptr;
+  const runtime::LinkSlackTally* most = nullptr;
+  for (const runtime::LinkSlackTally& l : report.links) {
+    if (l.time_slack > 0.0 || l.slackenings > 0) ++went_slack;
+    if (!longest || l.time_slack > longest->time_slack) longest = &l;
+    if (!most || l.slackenings > most->slackenings) most = &l;
+  }
+  std::cerr << "mbfe: links: " << went_slack << " of " << report.links.size() << " that can go slack did";
+  if (went_slack > 0)
+    std::cerr << " (longest '" << longest->name << "', " << longest->time_slack << " s in all; most often '"
+              << most->name << "', " << most->slackenings << " time" << (most->slackenings == 1 ? "" : "s") << ")";
+  std::cerr << (out ? "; each link in " + *out + ".json" : std::string()) << "\n";
 }
 
 }  // namespace
 
 int cmd_simulate(const Args& args) {
   const ParsedArgs parsed(args, {"integrator", "step", "t-end", "out", "every", "adjust", "probe", "rho-inf", "formulation", "start",
-                           "vtk", "vtk-scale", "vtk-frames"},
+                           "vtk", "vtk-scale", "vtk-frames", "check-adjustment", "set"},
                           {"help", "quiet", "strict"});
   if (parsed.has("help")) {
     std::cout << kHelp;
@@ -253,8 +241,9 @@ int cmd_simulate(const Args& args) {
   }
   LoadOptions load;
   load.quiet = parsed.has("quiet");
+  load.overrides = model_overrides(parsed);
   const Model model = Model::load(model_path, load);
-  runtime::SimulationRequest request = request_of(parsed, model.ir());
+  runtime::SimulationRequest request = request_of(parsed, model);
   std::unique_ptr<VtkAnimation> vtk;
   if (vtk_dir) {
     check_output_file((std::filesystem::path(*vtk_dir) / (model.ir().name + ".pvd")).string(), "--vtk", {model_path},
@@ -266,49 +255,89 @@ int cmd_simulate(const Args& args) {
   }
   if (parsed.has("formulation") && model.kind() != runtime::ModelKind::kCoupled)
     throw UsageError("--formulation applies to coupled models (bodies, beams and contacts) only");
-  model.assembled();  // a beam the analysis refuses is bad input before the output file is opened
-
-  ResultsOutput csv(out.value_or(""));
-  ResultsObserver observer(csv);
-  runtime::SimulationReport report;
-  try {
-    if (vtk) {
-      TeeObserver both(observer, *vtk);
-      report = model.simulate(request, both);
-    } else {
-      report = model.simulate(request, observer);
+  // A beam the analysis refuses is bad input before the output file is opened.
+  model.assembled_for(request.adjust);
+  std::optional<double> check_until;
+  if (parsed.has("check-adjustment")) {
+    const double t = parsed.number("check-adjustment").value_or(NAN);
+    if (!(t > 0.0) || !(t <= request.t_end)) {
+      std::ostringstream text;
+      text << "--check-adjustment: expected a time in s in (0, t_end = " << request.t_end << "], got '"
+           << parsed.value("check-adjustment").value_or("") << "'";
+      throw UsageError(text.str());
     }
-  } catch (...) {
-    csv.discard_if_empty();  // bad input found on the way (a static start that fails): no file left
-    throw;
+    if (!model.assembled().resolve_adjusted(request.adjust))
+      throw UsageError("--check-adjustment compares an adjusted run with the original model; this run is not "
+                       "adjusted (no active adjustment block, or --adjust off)");
+    check_until = t;
+  }
+
+  const bool quiet = parsed.has("quiet");
+  ResultsOutput csv(out.value_or(""));
+  ResultsObserver results(csv);
+  // With --check-adjustment the rows up to T are also kept for the comparison.
+  RowsUpTo kept(check_until.value_or(0.0));
+  TeeObserver results_and_kept(results, kept);
+  runtime::SimulationObserver& observer_used = check_until ? static_cast<runtime::SimulationObserver&>(results_and_kept)
+                                                           : static_cast<runtime::SimulationObserver&>(results);
+  runtime::SimulationReport report;
+  {
+    // Ctrl-C, SIGTERM, SIGHUP: the run stops before its next step, whole
+    // rows written and the record beside them says so (exit status 3).
+    const InterruptGuard interrupts;
+    ProgressLine progress(!quiet, request.t_end,
+                          static_cast<std::int64_t>(std::ceil(request.t_end / request.step - 1e-9)));
+    const runtime::StepMonitor keep_going = [&](double t, std::int64_t steps) {
+      progress.update(t, steps);
+      return !InterruptGuard::interrupted();
+    };
+    try {
+      if (vtk) {
+        TeeObserver both(observer_used, *vtk);
+        report = model.simulate(request, both, keep_going);
+      } else {
+        report = model.simulate(request, observer_used, keep_going);
+      }
+    } catch (...) {
+      progress.finish();
+      csv.discard_if_empty();  // bad input found on the way (a static start that fails): no file left
+      throw;
+    }
+    progress.finish();
   }
   csv.flush();
   if (vtk) {
     vtk->finish();
-    if (!request.quiet)
+    if (!quiet)
       std::cerr << "mbfe: " << vtk->frames_written() << " animation frames in " << *parsed.value("vtk") << "/"
                 << model.ir().name << ".pvd\n";
   }
-  if (out) write_sidecar(*out, model, request, report, observer, csv.rows());
+  nlohmann::json record = run_record(model, request, report, results.layout(), csv.rows());
+  if (check_until && report.message.empty()) {
+    const AdjustmentCheck check = check_adjustment(model, request, kept, *check_until);
+    record["adjustment_check"] = adjustment_check_json(check);
+    std::cerr << "mbfe: " << adjustment_check_line(check) << "\n";
+  }
+  if (out) write_run_record(*out, record);
   const runtime::SimulationResult& run = report.run;
   const std::string where = out ? " to " + *out : std::string();
   const std::string variant = report.variant.empty() ? "" : " (" + report.variant + ")";
   if (report.message.empty()) {
-    if (!request.quiet)
+    if (!quiet)
       std::cerr << "mbfe: " << model.ir().name << variant << ": " << run.steps << " " << run.integrator
                 << " steps of " << run.step << " s to t = " << run.t << " s in " << run.wall_seconds << " s; "
                 << csv.rows() << " rows written" << where << "\n";
-    if (!request.quiet && run.newton.iterations > 0)
+    if (!quiet && run.newton.iterations > 0)
       std::cerr << "mbfe: Newton: " << run.newton.iterations << " iterations ("
                 << static_cast<double>(run.newton.iterations) / std::max<long>(run.newton.steps, 1)
                 << " per step), " << run.newton.factorizations << " factorisations of the iteration matrix\n";
-    if (!request.quiet) print_spring_tally(report);
+    if (!quiet) print_tallies(report, out);
     return 0;
   }
   std::cerr << "mbfe simulate: " << report.message << (report.variant.empty() ? "" : "; " + report.variant) << "; "
             << csv.rows() << " rows written" << where
             << (run.status == runtime::SimulationStatus::kInterrupted ? "" : " up to there") << "\n";
-  print_spring_tally(report);
+  print_tallies(report, out);
   return 3;
 }
 

@@ -15,9 +15,11 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "runtime/coupled/tangent_spectrum.h"
+#include "runtime/simulation/assembled_model.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/json_text.h"
+#include "api/json_text.h"
 #include "tool/linearization_notice.h"
 
 namespace mbfe::tool {
@@ -32,7 +34,10 @@ original model (Rayleigh damping) and the adjusted one (each beam's
 `adjustment:` block; see docs/damping-adjustment.md). For a coupled model
 (bodies, beams and contacts) the eigenvalues are those of the linearised,
 partitioned system (eqs (16)-(17)) at the model's initial state (see
-docs/contacts.md). For a rigid-only model (bodies, no beams) they are those
+docs/contacts.md); without constraint contacts, those of the model linearised
+from its own tangents: every one up to 1,200 states, beyond that the 8
+fastest and 12 slowest by Arnoldi (the report says so; forward Euler's and
+AB2's limits are then upper bounds). For a rigid-only model (bodies, no beams) they are those
 of y' = f(t, y), y = [q; q'], f = [q'; M(q)^-1 (Q - F)], linearised at the
 initial state: a local estimate (the limits change as the motion moves away
 from that state), with no adjusted model. Away from an equilibrium (rigid or
@@ -102,7 +107,8 @@ int cmd_stability(const Args& args) {
   const bool any_adjustment = model.assembled().has_adjustment();
   if (coupled) {
     const int coordinates = static_cast<int>(model.ir().bodies.size()) + model.assembled().beams().dof;
-    if (coordinates <= runtime::kMaxLinearizedCoordinates)
+    if (coordinates <= runtime::kMaxLinearizedCoordinates && coordinates > kLinearizationNoticeCoordinates &&
+        !runtime::linearized_from_tangents(model.assembled()))
       std::cerr << linearization_notice("stability", coordinates, any_adjustment ? 2 : 1);
   }
   const runtime::ModelSpectrum original_spectrum = model.spectrum(false);
@@ -153,6 +159,10 @@ int cmd_stability(const Args& args) {
     std::cout << "  " << growing << " eigenvalue" << (growing == 1 ? " has" : "s have")
               << " Re > 0: the motion leaves the initial state (not an equilibrium), and every "
                  "method follows that growth; the limits are those of the others\n";
+  if (!original_spectrum.full.complete)
+    std::cout << "  (the " << runtime::kFastestEigenvalues << " fastest and " << runtime::kSlowestEigenvalues
+              << " slowest eigenvalues of each, by Arnoldi: they set the limits but for a lightly damped mode "
+                 "in the middle of the spectrum, which could lower forward Euler's and AB2's)\n";
   std::cout << "  original: fastest eigenvalue " << fastest(original) << " 1/s\n";
   if (any_adjustment)
     std::cout << "  adjusted: fastest eigenvalue " << fastest(adjusted) << " 1/s\n";

@@ -1,8 +1,11 @@
 // `mbfe stats RESULTS.csv --column NAME [--lowpass HZ] [--from T] [--to T] [--json]`:
-// the contact-force statistics of EN 50318 (runtime/signal/force_statistics.h).
+// the contact-force statistics of EN 50318 (runtime/signal/force_statistics.h);
+// without --column, the peak deck acceleration of the BEAM@S:acc columns and,
+// with --en1990, its check against EN 1990 Annex A2.
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -10,7 +13,7 @@
 #include "runtime/signal/force_statistics.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
-#include "tool/json_text.h"
+#include "api/json_text.h"
 #include "tool/results_columns.h"
 
 namespace mbfe::tool {
@@ -18,6 +21,7 @@ namespace mbfe::tool {
 namespace {
 
 constexpr const char* kHelp = R"(Usage: mbfe stats RESULTS.csv --column NAME [options]
+       mbfe stats RESULTS.csv [--en1990 ballasted|direct] [--column BEAM@S:acc] [options]
 
 Statistics of one column of a results file (the CSV, or the .npy with its
 .npy.json, that mbfe simulate writes) over a time window, as EN 50318
@@ -41,15 +45,102 @@ Options:
   --json          print {"mean", "std", "statistical_max", "statistical_min",
                   "max", "min", "loss_percent"} instead of the table
 
-Example:
+Without --column: the peak deck acceleration, the largest |a| of every
+acceleration probe column of a beam (BEAM@S:acc, written by mbfe simulate
+--probe deck@10:acc), each and overall, over the window and after the
+low-pass filter when one is given. With --en1990 TRACK the peak is checked
+against the limit of EN 1990 Annex A2 (A2.4.4.2.1(4)P): 3.5 m/s^2 for a
+ballasted track, 5 m/s^2 for a direct-fastened one; the standard counts
+frequencies up to max(30 Hz, 1.5 f0, f3) (f0, f3 the deck's first and
+third bending frequencies): give that as --lowpass. --en1990 with --column
+checks that one column. The check is printed ("within" or "EXCEEDS"); the
+exit status stays 0. --json prints {"columns": [{"name", "peak"}],
+"peak", "unit", and with --en1990 "en1990": {"track", "limit", "ok"}}.
+
+Examples:
   mbfe simulate models/bridge_moving_mass.yaml --every 1 --out crossing.csv
   mbfe stats crossing.csv --column force_tyre --lowpass 20 --from 0.2 --to 1.0
+  mbfe simulate models/bridge_moving_mass.yaml --every 1 --probe deck@10:acc,deck@5:acc --out acc.csv
+  mbfe stats acc.csv --en1990 ballasted --lowpass 30
 )";
+
+/// EN 1990:2002+A1:2005, Annex A2, A2.4.4.2.1(4)P: the largest peak vertical
+/// deck acceleration a railway bridge may see (m/s^2).
+constexpr double kBallastedLimit = 3.5;      // gamma_bt, ballasted track
+constexpr double kDirectFastenedLimit = 5.0;  // gamma_df, direct-fastened track
+
+/// A column of a beam's acceleration probe: BEAM@S:acc.
+bool is_deck_acceleration(const std::string& name) {
+  const std::string tail = ":acc";
+  return name.find('@') != std::string::npos && name.size() > tail.size() &&
+         name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+/// The statistics of `name`, bad samples named by their row.
+runtime::ForceStatistics statistics_of(const ResultColumns& cols, std::size_t index, const std::string& name,
+                                       const runtime::ForceStatisticsOptions& options, const std::string& path) {
+  const std::vector<double>& t = cols.values[0];
+  const std::vector<double>& values = cols.values[index];
+  try {
+    return runtime::force_statistics(t, values, options);
+  } catch (const runtime::BadSample& e) {
+    const std::size_t i = e.sample;
+    if (!std::isfinite(t[i]) || !std::isfinite(values[i])) {
+      const bool time = !std::isfinite(t[i]);
+      std::ostringstream os;
+      os << cols.where(i) << ": column '" << (time ? "t" : name) << "' is " << (time ? t[i] : values[i])
+         << "; the statistics take finite numbers only";
+      throw UsageError(os.str());
+    }
+    throw UsageError(cols.where(i) + ": " + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(path + ": " + e.what());
+  }
+}
+
+/// The peak deck acceleration of `names` and, for a track, its EN 1990 check.
+int deck_acceleration(const std::string& path, const std::vector<std::string>& names,
+                      const std::optional<std::string>& track, const runtime::ForceStatisticsOptions& options,
+                      bool json) {
+  std::vector<std::string> wanted = {"t"};
+  wanted.insert(wanted.end(), names.begin(), names.end());
+  const ResultColumns cols = read_columns(path, wanted);
+  double peak = 0.0;
+  nlohmann::json columns = nlohmann::json::array();
+  std::ostringstream table;
+  table << std::setprecision(6);
+  for (std::size_t c = 0; c < names.size(); ++c) {
+    const runtime::ForceStatistics s = statistics_of(cols, c + 1, names[c], options, path);
+    const double p = std::max(std::abs(s.max), std::abs(s.min));
+    peak = std::max(peak, p);
+    columns.push_back({{"name", names[c]}, {"peak", p}});
+    table << "  " << std::left << std::setw(24) << names[c] << std::right << " " << p << " m/s^2\n";
+  }
+  const double limit = !track ? 0.0 : *track == "ballasted" ? kBallastedLimit : kDirectFastenedLimit;
+  const bool ok = peak <= limit;
+  if (json) {
+    nlohmann::json j;
+    j["columns"] = columns;
+    j["peak"] = peak;
+    j["unit"] = "m/s^2";
+    if (track) j["en1990"] = {{"track", *track}, {"limit", limit}, {"ok", ok}};
+    std::cout << json_text(j, 2) << "\n";
+    return 0;
+  }
+  std::cout << "peak deck acceleration, " << cols.values[0].size() << " rows"
+            << (options.lowpass_hz > 0.0 ? ", low-pass " : ", unfiltered");
+  if (options.lowpass_hz > 0.0) std::cout << options.lowpass_hz << " Hz";
+  std::cout << "\n" << table.str() << std::setprecision(6) << "  peak                     " << peak << " m/s^2\n";
+  if (track)
+    std::cout << "EN 1990 A2.4.4.2.1(4)P, " << (*track == "ballasted" ? "ballasted" : "direct-fastened")
+              << " track: limit " << limit << " m/s^2; the peak " << (ok ? "is within it" : "EXCEEDS it") << "\n";
+  return 0;
+}
 
 }  // namespace
 
 int cmd_stats(const Args& args) {
-  const ParsedArgs parsed(args, {"column", "lowpass", "order", "from", "to"}, {"json", "help"});
+  const ParsedArgs parsed(args, {"column", "lowpass", "order", "from", "to", "en1990"}, {"json", "help"});
   if (parsed.has("help")) {
     std::cout << kHelp;
     return 0;
@@ -58,7 +149,10 @@ int cmd_stats(const Args& args) {
     throw UsageError("expected one RESULTS.csv, got " + std::to_string(parsed.positional().size()) +
                      " arguments (see --help)");
   const auto column = parsed.value("column");
-  if (!column || column->empty()) throw UsageError("--column NAME is required");
+  if (column && column->empty()) throw UsageError("--column: expected a column name, got an empty one");
+  const auto track = parsed.value("en1990");
+  if (track && *track != "ballasted" && *track != "direct")
+    throw UsageError("--en1990 takes ballasted (3.5 m/s^2) or direct (direct-fastened, 5 m/s^2), got '" + *track + "'");
   runtime::ForceStatisticsOptions options;
   if (const auto hz = parsed.number("lowpass")) {
     if (!(*hz > 0.0)) throw UsageError("--lowpass must be > 0 Hz");
@@ -72,25 +166,23 @@ int cmd_stats(const Args& args) {
   if (const auto from = parsed.number("from")) options.from = *from;
   if (const auto to = parsed.number("to")) options.to = *to;
   if (options.from > options.to) throw UsageError("--from must not be after --to");
-  const ResultColumns cols = read_columns(parsed.positional()[0], {"t", *column});
-  const std::vector<double>& t = cols.values[0];
-  const std::vector<double>& values = cols.values[1];
-  runtime::ForceStatistics s;
-  try {
-    s = runtime::force_statistics(t, values, options);
-  } catch (const runtime::BadSample& e) {
-    const std::size_t i = e.sample;
-    if (!std::isfinite(t[i]) || !std::isfinite(values[i])) {
-      const bool time = !std::isfinite(t[i]);
-      std::ostringstream os;
-      os << cols.where(i) << ": column '" << (time ? "t" : *column) << "' is " << (time ? t[i] : values[i])
-         << "; the statistics take finite numbers only";
-      throw UsageError(os.str());
+  const std::string& path = parsed.positional()[0];
+  if (!column || track) {
+    std::vector<std::string> names;
+    if (column) {
+      names.push_back(*column);
+    } else {
+      for (const std::string& name : result_column_names(path))
+        if (is_deck_acceleration(name)) names.push_back(name);
+      if (names.empty())
+        throw UsageError("--column NAME is required: " + path +
+                         " has no deck acceleration column (BEAM@S:acc, from --probe deck@10:acc), whose peak "
+                         "mbfe stats gives without one");
     }
-    throw UsageError(cols.where(i) + ": " + e.what());
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(parsed.positional()[0] + ": " + e.what());
+    return deck_acceleration(path, names, track, options, parsed.has("json"));
   }
+  const ResultColumns cols = read_columns(path, {"t", *column});
+  const runtime::ForceStatistics s = statistics_of(cols, 1, *column, options, path);
   if (parsed.has("json")) {
     nlohmann::json j;
     j["mean"] = s.mean;

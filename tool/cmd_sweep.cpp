@@ -52,6 +52,9 @@ DIR/summary.json list each point's values, status and collected statistics.
   --partition P, --time T, --array-limit K
                    sbatch's --partition, --time and the %K of --array
   --dry-run        with --slurm: write DIR/slurm/*.sbatch, do not submit
+  --set PATH=VALUE replace a value of the model file before the sweep varies
+                   it (repeatable; PATH as the vary paths); every point, and
+                   each --point and --collect run, needs the same --set flags
 
 A re-run skips points already done for the same request (the point's model
 file, the simulate: block and the collect: entries); failed points, and points
@@ -64,6 +67,7 @@ Exit status: 0 every point done; 2 bad sweep file or flags; 3 some point failed
 
 Example:
   mbfe sweep models/sweeps/bridge_speeds.yaml --out speeds --jobs 2
+  mbfe sweep models/sweeps/bridge_speeds.yaml --out stiff --set beams.deck.section.inertia=0.3
 )";
 
 std::string self_exe() {
@@ -105,7 +109,7 @@ std::string solver_key(const ir::Sweep& sweep, const std::string& model_text, lo
 }
 
 int run_local(const ir::Sweep& sweep, const std::string& sweep_file, const std::string& model_text,
-              const std::string& out_dir, long jobs, bool quiet) {
+              const std::string& out_dir, long jobs, bool quiet, const std::vector<std::string>& model_sets) {
   const long n = sweep.points();
   std::vector<long> todo;
   long stale = 0;
@@ -144,6 +148,7 @@ int run_local(const ir::Sweep& sweep, const std::string& sweep_file, const std::
       started[k] = true;
       std::vector<std::string> args = {exe, "sweep", sweep_file, "--out", out_dir, "--point",
                                        std::to_string(todo[k]), "--quiet"};
+      for (const std::string& set : model_sets) args.insert(args.end(), {"--set", set});
       std::vector<char*> argv;
       for (std::string& a : args) argv.push_back(a.data());
       argv.push_back(nullptr);
@@ -178,7 +183,7 @@ int run_local(const ir::Sweep& sweep, const std::string& sweep_file, const std::
 }  // namespace
 
 int cmd_sweep(const Args& args) {
-  const ParsedArgs parsed(args, {"out", "jobs", "point", "partition", "time", "array-limit"},
+  const ParsedArgs parsed(args, {"out", "jobs", "point", "partition", "time", "array-limit", "set"},
                           {"help", "quiet", "collect", "slurm", "dry-run"});
   if (parsed.has("help")) {
     std::cout << kHelp;
@@ -193,7 +198,8 @@ int cmd_sweep(const Args& args) {
   const std::string model_path = frontend::sweep_model_path(sweep);
   if (!fs::exists(model_path))
     throw ir::ModelError(sweep.source_path, sweep.model_loc, "model file '" + model_path + "' does not exist");
-  const std::string model_text = frontend::read_sweep_model(sweep);
+  const std::string model_text =
+      frontend::overridden_sweep_model(sweep, frontend::read_sweep_model(sweep), model_overrides(parsed));
   frontend::check_sweep_paths(sweep, model_text);
   const long n = sweep.points();
   // The summary and the points go into DIR: it must be a folder, and its
@@ -210,6 +216,7 @@ int cmd_sweep(const Args& args) {
       slurm.array_limit = static_cast<long>(*k);
     }
     slurm.dry_run = parsed.has("dry-run");
+    slurm.model_sets = parsed.values("set");
     // Before anything is created: a newline in --out would write DIR too.
     check_slurm_arguments(self_exe(), fs::absolute(sweep_file).string(), fs::absolute(*out).string(), slurm);
   }
@@ -252,7 +259,7 @@ int cmd_sweep(const Args& args) {
     if (*j < 1 || *j != std::floor(*j)) throw UsageError("--jobs must be a positive whole number");
     jobs = static_cast<long>(*j);
   }
-  return run_local(sweep, sweep_file, model_text, *out, jobs, quiet);
+  return run_local(sweep, sweep_file, model_text, *out, jobs, quiet, parsed.values("set"));
 }
 
 }  // namespace mbfe::tool

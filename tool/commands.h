@@ -16,6 +16,7 @@ int cmd_eval(const Args& args);
 int cmd_simulate(const Args& args);
 int cmd_modal(const Args& args);
 int cmd_stability(const Args& args);
+int cmd_advise(const Args& args);
 int cmd_plot(const Args& args);
 int cmd_sweep(const Args& args);
 int cmd_stats(const Args& args);

@@ -23,9 +23,11 @@ Commands:
   simulate   integrate a model in time and write a CSV
   modal      modal analysis and state-space eigenvalues (the paper's Table 1)
   stability  largest stable step of each integrator, original and adjusted
+  advise     the lowest omega_limit for an accuracy tolerance, its steps and wall time
   plot       plot a results CSV to a PNG (needs gnuplot)
   sweep      a parameter study: many runs of one model, locally or on Slurm
-  stats      contact-force statistics of a results column (EN 50318: filtered, windowed)
+  stats      contact-force statistics of a results column (EN 50318: filtered, windowed);
+             the peak deck acceleration and its EN 1990 check
 
 Example:
   mbfe simulate models/double_pendulum.yaml --t-end 2 --out pendulum.csv
@@ -50,7 +52,7 @@ int main(int argc, char** argv) {
   const std::map<std::string, int (*)(const Args&)> commands = {
       {"generate", cmd_generate}, {"eval", cmd_eval},           {"simulate", cmd_simulate},
       {"modal", cmd_modal},       {"stability", cmd_stability}, {"plot", cmd_plot},
-      {"sweep", cmd_sweep},       {"stats", cmd_stats}};
+      {"sweep", cmd_sweep},       {"stats", cmd_stats},         {"advise", cmd_advise}};
   const std::string name = argv[1];
   const auto it = commands.find(name);
   if (it == commands.end()) {
@@ -62,6 +64,10 @@ int main(int argc, char** argv) {
     return it->second(args);
   } catch (const mbfe::ir::ModelError& e) {
     std::cerr << e.what() << "\n";
+    return 2;
+  } catch (const mbfe::runtime::InvalidRequest& e) {
+    // The runtime names the request's field; the command line says its flag.
+    std::cerr << "mbfe " << name << ": " << request_flag(e.field()) << " " << e.detail() << "\n";
     return 2;
   } catch (const mbfe::runtime::InvalidInput& e) {
     std::cerr << "mbfe " << name << ": " << e.what() << "\n";

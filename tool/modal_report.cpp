@@ -80,7 +80,7 @@ std::vector<std::string> spectrum_table_lines(const runtime::StateSpectrum& spec
   return lines;
 }
 
-std::string spectrum_summary(const runtime::StateSpectrum& spectrum, int dof) {
+std::string spectrum_summary(const runtime::StateSpectrum& spectrum, int dof, const std::string& partial) {
   std::string s = std::to_string(dof) + " DOF, " + std::to_string(spectrum.oscillatory_pairs) +
                   " oscillatory pairs";
   if (!spectrum.eigenvalues.empty()) {
@@ -91,7 +91,7 @@ std::string spectrum_summary(const runtime::StateSpectrum& spectrum, int dof) {
   }
   const double h = spectrum.h_max_forward_euler;
   if (!spectrum.complete) {
-    s += ", forward-Euler h_max unknown (partial spectrum: lowest modes only)";
+    s += ", forward-Euler h_max unknown (partial spectrum: " + partial + ")";
   } else if (std::isinf(h)) {
     s += ", forward-Euler h_max unlimited (no nonzero eigenvalue)";
   } else if (h == 0.0) {

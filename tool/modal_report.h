@@ -27,8 +27,10 @@ std::vector<std::string> spectrum_table_lines(const runtime::StateSpectrum& spec
 int spectrum_table_width();
 
 /// "100 DOF, 13 oscillatory pairs, fastest eigenvalue -1.314938e+08 1/s,
-/// forward-Euler h_max = 1.52098e-08 s".
-std::string spectrum_summary(const runtime::StateSpectrum& spectrum, int dof);
+/// forward-Euler h_max = 1.52098e-08 s". A partial spectrum says which part
+/// it holds (`partial`).
+std::string spectrum_summary(const runtime::StateSpectrum& spectrum, int dof,
+                             const std::string& partial = "lowest modes only");
 
 /// "cap", "paper_eq25", "keep_slow", "none", "mass".
 const char* policy_name(ir::AdjustmentPolicy policy);

@@ -100,6 +100,20 @@ void read_csv(std::istream& in, const std::vector<std::string>& names, ResultCol
   if (in.bad()) throw UsageError(path + ": read error");
 }
 
+/// A .npy by its name or, whatever the name, by NumPy's magic bytes at the
+/// start of a file that can be read again from there (`in` is left at the
+/// start; a pipe is read as named).
+bool is_npy(const std::string& path, std::istream& in) {
+  if (ends_with(path, ".npy")) return true;
+  if (in.tellg() < 0) return false;
+  char magic[6] = {};
+  in.read(magic, sizeof magic);
+  const bool numpy = in.gcount() == 6 && std::string(magic, 6) == "\x93NUMPY";
+  in.clear();
+  in.seekg(0);
+  return numpy;
+}
+
 /// The column names of a .npy from its sidecar FILE.npy.json (mbfe simulate
 /// writes them there: a .npy holds numbers only).
 std::vector<std::string> sidecar_columns(const std::string& path) {
@@ -191,13 +205,22 @@ ResultColumns read_columns(const std::string& path, const std::vector<std::strin
   if (!in) throw UsageError(path + ": cannot read the results file: " + std::strerror(errno));
   ResultColumns out;
   out.path = path;
-  out.npy = ends_with(path, ".npy");
+  out.npy = is_npy(path, in);
   out.values.assign(names.size(), {});
   if (out.npy)
     read_npy(in, names, out);
   else
     read_csv(in, names, out);
   return out;
+}
+
+std::vector<std::string> result_column_names(const std::string& path) {
+  check_input_file(path, "the results file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UsageError(path + ": cannot read the results file: " + std::strerror(errno));
+  if (is_npy(path, in)) return sidecar_columns(path);
+  bool has_rows = false;
+  return read_csv_header(path, has_rows);
 }
 
 std::vector<std::string> read_csv_header(const std::string& path, bool& has_rows) {

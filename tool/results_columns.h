@@ -31,14 +31,18 @@ struct ResultColumns {
   std::string where(std::size_t row) const;
 };
 
-/// The columns `names` of the results file at `path` (.npy by its name, else
-/// CSV), as numbers.
+/// The columns `names` of the results file at `path` (.npy by its name or
+/// its magic bytes, else CSV), as numbers.
 /// @throws UsageError (cli_args.h) naming the file, and the line or row and the
 ///         column: a missing or unreadable file, a device or folder, a missing
 ///         column, a field that is not a number, a line or row count over the
 ///         limits, a .npy that is not the 2-D array of little-endian doubles
 ///         mbfe writes or has no readable sidecar naming its columns.
 ResultColumns read_columns(const std::string& path, const std::vector<std::string>& names);
+
+/// Every column name of the results file at `path` (a CSV's header, a .npy's
+/// sidecar). @throws UsageError as read_columns().
+std::vector<std::string> result_column_names(const std::string& path);
 
 /// The header of the CSV at `path` (its column names) and whether a data row
 /// follows, read within the same bounds (for `mbfe plot`, whose rows gnuplot

@@ -13,8 +13,8 @@
 #include "api/mbfe.h"
 #include "frontend/parse_sweep.h"
 #include "frontend/sha256.h"
-#include "tool/json_text.h"
-#include "tool/results_output.h"
+#include "api/json_text.h"
+#include "api/results_output.h"
 
 namespace mbfe::tool {
 
@@ -126,15 +126,16 @@ class StatsObserver : public runtime::SimulationObserver {
   std::vector<Acc> acc_;
 };
 
-runtime::SimulationRequest request_of(const ir::Sweep& sweep, const ir::Model& model) {
+/// The point model's request (its `simulation:` block), the sweep's
+/// `simulate:` block overriding it.
+runtime::SimulationRequest request_of(const ir::Sweep& sweep, const Model& model) {
   const ir::SweepSimulation& s = sweep.simulation;
-  runtime::SimulationRequest r;
-  r.integrator = runtime::parse_integrator(s.integrator.empty() ? model.simulation.integrator : s.integrator);
-  r.step = s.step > 0 ? s.step : model.simulation.step;
-  r.t_end = s.t_end > 0 ? s.t_end : model.simulation.t_end;
+  runtime::SimulationRequest r = model.request();
+  if (!s.integrator.empty()) r.integrator = runtime::parse_integrator(s.integrator);
+  if (s.step > 0) r.step = s.step;
+  if (s.t_end > 0) r.t_end = s.t_end;
   for (const std::string& p : s.probes) r.probes.push_back(runtime::parse_probe(p));
   if (!s.adjust.empty()) r.adjust = s.adjust == "on";
-  r.handle_sigint = false;
   return r;
 }
 
@@ -210,7 +211,7 @@ PointResult run_sweep_point(const ir::Sweep& sweep, const std::string& model_tex
     const Model model = Model::parse(text, model_file.string(), options);
     ResultsOutput csv((dir / "run.csv").string());
     StatsObserver observer(sweep, csv);
-    const runtime::SimulationReport report = model.simulate(request_of(sweep, model.ir()), observer);
+    const runtime::SimulationReport report = model.simulate(request_of(sweep, model), observer);
     csv.flush();
     r.stats = observer.stats();
     r.done = report.message.empty();

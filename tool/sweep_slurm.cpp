@@ -104,7 +104,9 @@ void check_slurm_arguments(const std::string& mbfe, const std::string& sweep_fil
   const std::pair<const char*, const std::string*> words[] = {
       {"--out", &out_dir}, {"the sweep file", &sweep_file}, {"the mbfe executable", &mbfe},
       {"--partition", &options.partition}, {"--time", &options.time}};
-  for (const auto& [what, value] : words) {
+  std::vector<std::pair<const char*, const std::string*>> checked(std::begin(words), std::end(words));
+  for (const std::string& set : options.model_sets) checked.emplace_back("--set", &set);
+  for (const auto& [what, value] : checked) {
     if (const int c = control_character(*value); c >= 0)
       throw UsageError(std::string(what) + ": '" + shown(*value) + "' holds the control character " +
                        hex(c) + ", which a Slurm script cannot carry (one would end its line)");
@@ -127,8 +129,9 @@ SlurmSubmission submit_slurm_sweep(const std::string& mbfe, const std::string& s
   const fs::path slurm = dir / "slurm";
   fs::create_directories(slurm);
   const std::string env = "export MBFE_CACHE_DIR=" + quote((dir / "cache").string()) + "\n";
-  const std::string base = quote(fs::absolute(mbfe).string()) + " sweep " + quote(fs::absolute(sweep_file).string()) +
-                           " --out " + quote(dir.string());
+  std::string base = quote(fs::absolute(mbfe).string()) + " sweep " + quote(fs::absolute(sweep_file).string()) +
+                     " --out " + quote(dir.string());
+  for (const std::string& set : options.model_sets) base += " --set " + quote(set);
   SlurmSubmission s;
   s.points_script = (slurm / "points.sbatch").string();
   s.collect_script = (slurm / "collect.sbatch").string();

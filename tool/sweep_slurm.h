@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace mbfe::tool {
 
@@ -12,6 +13,7 @@ struct SlurmOptions {
   std::string time;       // per task, Slurm's format ("10:00"); empty: the default
   long array_limit = 0;   // at most this many tasks at once; 0: no limit
   bool dry_run = false;   // write the scripts, do not submit
+  std::vector<std::string> model_sets;  // each task's `--set PATH=VALUE`s: "PATH=VALUE"
 };
 
 struct SlurmSubmission {

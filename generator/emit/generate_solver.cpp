@@ -54,6 +54,13 @@ GeneratedSolver generate_solver(const ir::Model& model) {
                             "model '" + model.name + "': " + e.what() +
                                 " (a product of its masses, lengths, inertias or loads exceeds 1.8e308; "
                                 "use values of a physical magnitude)");
+  } catch (const std::domain_error& e) {
+    // GiNaC's pole_error and domain_error. The expressions of the file are
+    // checked where they are converted (time_functions.h) and differentiated
+    // (the motions), with their positions; this is the net under them.
+    throw ir::ModelError(model.source_path, {},
+                         "model '" + model.name + "': the symbolic derivation found an undefined value (GiNaC: " +
+                             e.what() + ")");
   }
 }
 

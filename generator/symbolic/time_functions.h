@@ -16,7 +16,11 @@
 
 namespace mbfe::gen {
 
-/// `e` as a GiNaC expression in the symbol `t`; numbers as exact decimal rationals.
+/// `e` as a GiNaC expression in the symbol `t`; numbers as exact decimal
+/// rationals. Converted node by node without recursion. @throws ir::ModelError
+/// at the node where GiNaC finds the expression undefined or not real for
+/// every t (1/(t - t), log(t - t), sqrt(t - t - 1)); the parser has refused
+/// such parts that are written as constants already.
 GiNaC::ex to_ginac(const ir::Expression& e, const GiNaC::symbol& t);
 
 /// 1 on [start, stop), 0 outside, as a product of steps (1 for an unbounded window).

@@ -5,25 +5,23 @@
 #include <complex>
 #include <vector>
 
+#include "runtime/coupled/coupled_tangents.h"
 #include "runtime/coupled/linearization.h"
+#include "runtime/coupled/tangent_spectrum.h"
 #include "runtime/errors/multibody_errors.h"
 #include "runtime/errors/invalid_input.h"
+#include "runtime/simulation/assembled_model.h"
 #include "runtime/simulation/static_start.h"
 
 namespace mbfe::runtime {
 
 namespace {
 
-double largest_modulus(const StateSpectrum& spectrum) {
-  double largest = 0.0;
-  for (const auto& l : spectrum.eigenvalues) largest = std::max(largest, std::abs(l));
-  return largest;
-}
-
 ModelSpectrum from_linearization(const StateSpectrum& linearized, int coordinates) {
   ModelSpectrum out;
   out.full = with_zero_modes(linearized);
   out.limiting = split_growing(out.full).limiting;
+  out.limiting.complete = out.full.complete;
   out.growing = growing_beyond_noise(out.full);
   out.coordinates = coordinates;
   out.linearized = true;
@@ -31,22 +29,6 @@ ModelSpectrum from_linearization(const StateSpectrum& linearized, int coordinate
 }
 
 }  // namespace
-
-StateSpectrum with_zero_modes(const StateSpectrum& spectrum) {
-  const double zero = kZeroModeRel * largest_modulus(spectrum);
-  std::vector<std::complex<double>> ev = spectrum.eigenvalues;
-  for (auto& l : ev)
-    if (std::abs(l) <= zero) l = 0.0;
-  StateSpectrum out = spectrum_from_eigenvalues(std::move(ev));
-  out.complete = spectrum.complete;
-  return out;
-}
-
-int growing_beyond_noise(const StateSpectrum& spectrum) {
-  const double noise = kLinearizationNoiseRel * largest_modulus(spectrum);
-  return static_cast<int>(std::count_if(spectrum.eigenvalues.begin(), spectrum.eigenvalues.end(),
-                                        [noise](const std::complex<double>& l) { return l.real() > noise; }));
-}
 
 ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
   adjusted = model.resolve_adjusted(adjusted);
@@ -90,15 +72,20 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
         return out;
       }
       case ModelKind::kCoupled: {
-        const int n_coupled = static_cast<int>(model.ir().bodies.size()) + model.beams().dof;
-        if (n_coupled > kMaxLinearizedCoordinates)
-          throw InvalidInput(model.ir().source_path + ": the coupled system has " + std::to_string(n_coupled) +
-                             " coordinates; its linearisation is a dense eigenproblem and handles at most " +
-                             std::to_string(kMaxLinearizedCoordinates) +
-                             " (each beam's own spectrum: mbfe modal; runs: an implicit integrator needs no limit)");
         const std::shared_ptr<CoupledDynamics> dynamics = model.make_dynamics(adjusted);
+        const int n_coupled = dynamics->n();
+        const bool from_tangents = linearized_from_tangents(*dynamics);
+        if (!from_tangents && n_coupled > kMaxLinearizedCoordinates)
+          throw InvalidInput(model.ir().source_path + ": the coupled system has " + std::to_string(n_coupled) +
+                             " coordinates and constraint contacts; its linearisation is a dense eigenproblem and "
+                             "handles at most " + std::to_string(kMaxLinearizedCoordinates) +
+                             " (each beam's own spectrum: mbfe modal; runs: an implicit integrator needs no limit)");
         dynamics->impose_motion(0.0, q0, qd0);
-        if (static_start) coupled_static_state(model.ir(), *dynamics, q0, qd0);
+        if (static_start) coupled_static_start(model.ir(), dynamics, q0, qd0);
+        if (from_tangents) {
+          CoupledTangents tangents(*dynamics, 0.0, q0, qd0);
+          return from_linearization(tangent_spectrum(tangents), n_coupled);
+        }
         const StateSpectrum full = linearized_spectrum(dynamics, 0.0, q0, qd0);
         return from_linearization(full, static_cast<int>(full.eigenvalues.size()) / 2);
       }
@@ -109,6 +96,12 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
     throw InvalidInput(model.ir().source_path + ": at the initial state: " + e.what());
   }
   throw InvalidInput("unknown kind of model");
+}
+
+bool linearized_from_tangents(const CoupledDynamics& dynamics) { return dynamics.model().m() == 0; }
+
+bool linearized_from_tangents(const AssembledModel& model) {
+  return model.kind() == ModelKind::kCoupled && linearized_from_tangents(*model.make_dynamics(false));
 }
 
 std::vector<StepLimitRow> step_limit_table(const ModelSpectrum& original, const ModelSpectrum* adjusted) {

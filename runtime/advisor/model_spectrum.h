@@ -23,12 +23,15 @@
 #include <optional>
 #include <vector>
 
+#include "runtime/coupled/linearization.h"
 #include "runtime/integrators/integrator.h"
 #include "runtime/modal/state_spectrum.h"
-#include "runtime/simulation/assembled_model.h"
 #include "runtime/stability/step_limits.h"
 
 namespace mbfe::runtime {
+
+class AssembledModel;
+class CoupledDynamics;
 
 struct ModelSpectrum {
   StateSpectrum full;      // every eigenvalue
@@ -46,39 +49,20 @@ struct ModelSpectrum {
   int growing_at_start = 0;
 };
 
-/// A linearisation's eigenvalues carry the error of its difference quotients
-/// (runtime/coupled/linearization.h: central differences with a relative
-/// step of 1e-6, so about eps / 1e-6 = 2e-10 of the terms an acceleration is
-/// summed from, amplified where those terms cancel: the adjusted beams'
-/// low-rank operators subtract terms k* / omega_1^2 ~ 1e4 times the result).
-/// The eigenvalues inherit it relative to the largest |lambda|: an undamped
-/// mode of the shipped vehicle models comes out with Re up to +6.7e-9
-/// max |lambda| (adjusted). A positive real part up to this share of
-/// max |lambda| is that noise, not growth of the motion: it is not counted as
-/// growing (the eigenvalue is still left out of the limits, as every Re > 0
-/// is). The constant is 15 times the largest measured; a true growth that slow
-/// is not what step limits are about: at RK4's limit (~2.8 / max |lambda|) it
-/// grows by exp(2.8e-7 N) over N steps, 3 % in 1e5.
-inline constexpr double kLinearizationNoiseRel = 1e-7;
+/// A coupled model without constraint contacts is linearised from its own
+/// tangents (runtime/coupled/coupled_tangents.h, tangent_spectrum.h): exact
+/// but for its force elements' small difference quotients, dense up to
+/// kMaxDenseTangentStates states, the two ends of the spectrum by Arnoldi
+/// beyond (seconds for the ten-span catenary). One with constraint contacts
+/// is linearised on their manifold by differences of the partitioned
+/// system's right-hand side (runtime/coupled/linearization.h), dense.
+bool linearized_from_tangents(const CoupledDynamics& dynamics);
+/// The same for an assembled model (false unless coupled).
+bool linearized_from_tangents(const AssembledModel& model);
 
-/// A zero mode (a driven coordinate, a rigid-body motion, a neutral
-/// equilibrium) has an exactly zero Jacobian column and comes out of the
-/// eigen-solver at ~1e-16 max |lambda| (measured on the shipped vehicle
-/// models); an eigenvalue below this share of max |lambda| is set to 0. A
-/// physical mode that slow turns by 2.8e-10 rad per step at RK4's limit:
-/// nothing a step limit depends on.
-inline constexpr double kZeroModeRel = 1e-10;
-
-/// The spectrum with every |lambda| <= kZeroModeRel max |lambda| set to 0.
-StateSpectrum with_zero_modes(const StateSpectrum& spectrum);
-
-/// The eigenvalues with Re > kLinearizationNoiseRel max |lambda|: the motion's
-/// own growth, beyond the linearisation's noise.
-int growing_beyond_noise(const StateSpectrum& spectrum);
-
-/// The largest coupled model (coordinates) model_spectrum linearises: its
-/// dense eigenproblem of twice the coordinates takes hours and gigabytes
-/// beyond a few thousand.
+/// The largest coupled model with constraint contacts (coordinates) that
+/// model_spectrum linearises: its dense eigenproblem of twice the
+/// coordinates takes hours and gigabytes beyond a few thousand.
 inline constexpr int kMaxLinearizedCoordinates = 3000;
 
 /// The spectrum of `model`, original or with its adjusted beams.

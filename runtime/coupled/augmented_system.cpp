@@ -42,10 +42,9 @@ void AugmentedSystem::full_state(double, const Eigen::VectorXd& y, Eigen::Vector
   qd = y.tail(dyn_->n());
 }
 
-ContactReport AugmentedSystem::report(double t, const Eigen::VectorXd& y) {
-  Eigen::VectorXd ydot;
-  rhs(t, y, ydot);
-  ContactReport r;
+const ContactReport& AugmentedSystem::report(double t, const Eigen::VectorXd& y) {
+  rhs(t, y, report_ydot_);
+  ContactReport& r = report_;
   r.lambda = lambda_;
   r.qdd = qdd_;
   r.phi = dyn_->values().phi;

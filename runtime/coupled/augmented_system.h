@@ -24,9 +24,11 @@ class AugmentedSystem : public CoupledSystem {
                                 const Eigen::VectorXd& qd) override;
   void full_state(double t, const Eigen::VectorXd& y, Eigen::VectorXd& q,
                   Eigen::VectorXd& qd) override;
-  ContactReport report(double t, const Eigen::VectorXd& y) override;
+  const ContactReport& report(double t, const Eigen::VectorXd& y) override;
 
  private:
+  ContactReport report_;  // what report() returns, reused
+  Eigen::VectorXd report_ydot_;
   Eigen::VectorXd q_, qd_, qdd_, lambda_;
 };
 

@@ -14,7 +14,7 @@ namespace {
 constexpr double kEndSlack = 1e-3;  // of an element length
 }  // namespace
 
-void ConstraintValues::jc_times(const Eigen::VectorXd& x, Eigen::VectorXd& out) const {
+void ConstraintValues::jc_times(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::VectorXd& out) const {
   out.setZero(je.rows());
   for (int r = 0; r < je.rows(); ++r) {
     for (int k = 0; k < 4; ++k) {

@@ -32,7 +32,7 @@ struct ConstraintValues {
   std::vector<int> element;     // per contact: element holding s
 
   /// out = J_c x (x: nc entries).
-  void jc_times(const Eigen::VectorXd& x, Eigen::VectorXd& out) const;
+  void jc_times(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::VectorXd& out) const;
   /// J_c as a dense m x nc matrix.
   Eigen::MatrixXd jc_dense(int nc) const;
 };

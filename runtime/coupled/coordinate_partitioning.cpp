@@ -264,13 +264,12 @@ void PartitionedSystem::full_state(double t, const Eigen::VectorXd& y, Eigen::Ve
   qd = qd_;
 }
 
-ContactReport PartitionedSystem::report(double t, const Eigen::VectorXd& y) {
-  Eigen::VectorXd ydot;
-  rhs(t, y, ydot);
-  ContactReport r;
+const ContactReport& PartitionedSystem::report(double t, const Eigen::VectorXd& y) {
+  rhs(t, y, report_ydot_);
+  ContactReport& r = report_;
   r.lambda = lambda_;
   r.qdd = qdd_;
-  ConstraintValues cv;
+  ConstraintValues& cv = report_cv_;
   dyn_->constraints().evaluate(t, q_.data(), q_.data() + dyn_->nb(), nullptr, nullptr, cv);
   r.phi = cv.phi;
   r.phi_max = dyn_->phi_max(cv);

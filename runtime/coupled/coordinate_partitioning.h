@@ -44,7 +44,7 @@ class PartitionedSystem : public CoupledSystem {
                                 const Eigen::VectorXd& qd) override;
   void full_state(double t, const Eigen::VectorXd& y, Eigen::VectorXd& q,
                   Eigen::VectorXd& qd) override;
-  ContactReport report(double t, const Eigen::VectorXd& y) override;
+  const ContactReport& report(double t, const Eigen::VectorXd& y) override;
 
   const Partition& partition() const { return part_; }
   /// How many times the partition was chosen again since construction.
@@ -53,6 +53,9 @@ class PartitionedSystem : public CoupledSystem {
   int last_newton_iterations() const { return last_iters_; }
 
  private:
+  ContactReport report_;  // what report() returns, reused
+  Eigen::VectorXd report_ydot_;
+  ConstraintValues report_cv_;
   // Fills q_, qd_ (full) from y with v closed and v' projected.
   void close(double t, const Eigen::VectorXd& y);
   void set_partition(const Partition& p);

@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "runtime/errors/multibody_errors.h"
+#include "runtime/fem/hermite_shape.h"
+#include "runtime/linalg/sparse_ldlt_solve.h"
 
 namespace mbfe::runtime {
 
@@ -166,7 +168,8 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
   ForceSink sink{d.qb_force.data(), d.fc_extra.data()};
   const auto& forces = model.forces();
   for (std::size_t e = 0; e < forces.size(); ++e) forces[e]->add_force(args, *d.forces[e], sink);
-  const bool extra = !forces.empty();
+  const bool applied = add_applied_loads(t, d.fc_extra.data());
+  const bool extra = !forces.empty() || applied;
   d.rb = d.qb_force - d.fb;
   // Driven coordinates: q'' known. Their rows of M and F - Q are kept first,
   // for the drive reactions.
@@ -202,7 +205,7 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
     rck.noalias() += b.K * q.segment(nb + off, nk);
     rck = b.P - rck;
     if (extra) rck += d.fc_extra.segment(off, nk);
-    d.ac0.segment(off, nk) = model.mass_factor(static_cast<int>(k)).solve(rck);
+    solve_ldlt(model.mass_factor(static_cast<int>(k)), rck, d.ac0.segment(off, nk), d.ldlt);
   }
   for (std::size_t s = 0; s < structures.size(); ++s) {
     const LowRankStructure& st = *structures[s];
@@ -255,10 +258,12 @@ const Eigen::VectorXd& CoupledDynamics::inverse_mass_column(int beam, int c) {
     // is not M (the policy mass; such a structure is one beam's: the model
     // refuses constraint contacts on joined ones with another mass).
     const LowRankStructure* st = b.structure >= 0 ? model_->structures()[b.structure].get() : nullptr;
-    if (st != nullptr && (st->base() != LowRankStructure::Base::kMass || !(st->mass().d.array() == 0.0).all()))
+    if (st != nullptr && (st->base() != LowRankStructure::Base::kMass || !(st->mass().d.array() == 0.0).all())) {
       st->solve_mass(data_.tmp, col, data_.structures[static_cast<std::size_t>(b.structure)]);
-    else
-      col = model_->mass_factor(beam).solve(data_.tmp);
+    } else {
+      col.resize(nk);
+      solve_ldlt(model_->mass_factor(beam), data_.tmp, col, data_.ldlt);
+    }
   }
   return col;
 }
@@ -275,25 +280,30 @@ void CoupledDynamics::split_accelerations(int k, const Eigen::Ref<const Eigen::V
   // modes' load g = Phi_L^T (P + f) from the rows of Phi_L where f is not
   // zero (contacts, links, point loads).
   a = st.base_load_response() - (mu_c / mu_m) * sd - (mu_k / mu_m) * s;
-  d.split_g = st.modal_loads();
+  // Each structure's own scratch: the two wires of a catenary differ in size.
+  LowRankStructure::Workspace& ws = d.structures[static_cast<std::size_t>(split_structure_[k])];
+  Eigen::VectorXd& g = ws.modal_g;
+  g = st.modal_loads();
   const Eigen::Map<const Eigen::VectorXd> loads(f, f != nullptr ? s.size() : 0);
   if (f != nullptr && !loads.isZero(0.0)) {
-    d.tmp = loads;
-    LowRankStructure::Workspace& ws = d.structures[static_cast<std::size_t>(split_structure_[k])];
-    st.solve_base(d.tmp, ws.base_solve);
+    ws.r = loads;
+    st.solve_base(ws.r, ws.base_solve, ws);
     a += ws.base_solve / mu_m;
     for (Eigen::Index i = 0; i < loads.size(); ++i)
-      if (loads[i] != 0.0) d.split_g.noalias() += loads[i] * st.phi().row(i).transpose();
+      if (loads[i] != 0.0) {
+        const double* row = st.phi().data() + i * m;  // row-major: row i is contiguous
+        for (Eigen::Index j = 0; j < m; ++j) g[j] += loads[i] * row[j];
+      }
   }
   const auto eta = split.e.segment(o, m), zeta = split.e.segment(o + m, m);
   const auto etad = split.ed.segment(o, m), zetad = split.ed.segment(o + m, m);
-  const Eigen::ArrayXd b = st.base_modal().array();
-  d.split_acc.segment(o, m) = ((d.split_g.array() - (mu_c * b + st.damping().d.array()) * etad.array() -
+  const auto b = st.base_modal().array();
+  d.split_acc.segment(o, m) = ((g.array() - (mu_c * b + st.damping().d.array()) * etad.array() -
                                 (mu_k * b + st.stiffness().d.array()) * eta.array()) /
                                (mu_m * b + st.mass().d.array()))
                                   .matrix();
   d.split_acc.segment(o + m, m) =
-      (d.split_g.array() / (mu_m * b) - (mu_c / mu_m) * zetad.array() - (mu_k / mu_m) * zeta.array()).matrix();
+      (g.array() / (mu_m * b) - (mu_c / mu_m) * zetad.array() - (mu_k / mu_m) * zeta.array()).matrix();
 }
 
 void CoupledDynamics::solve_augmented(double t, Eigen::VectorXd& qdd, Eigen::VectorXd& lambda) {
@@ -401,6 +411,43 @@ double CoupledDynamics::phi_max(const ConstraintValues& cv, int* row) const {
   const double v = cv.phi.cwiseAbs().maxCoeff(&r);
   if (row) *row = r;
   return v;
+}
+
+void CoupledDynamics::set_applied_load(int beam, double s, std::function<double(double)> value) {
+  const auto& beams = model_->beams();
+  if (beam < 0 || beam >= static_cast<int>(beams.size()))
+    throw std::invalid_argument("beam index " + std::to_string(beam) + " outside the model's " +
+                                std::to_string(beams.size()) + " beams");
+  const BeamMesh& mesh = beams[static_cast<std::size_t>(beam)].mesh;
+  if (!(s >= 0.0 && s <= mesh.length()))
+    throw std::invalid_argument("beam '" + mesh.name + "': s = " + std::to_string(s) + " m is off the beam [0, " +
+                                std::to_string(mesh.length()) + "] m");
+  CoupledData::AppliedLoad load;
+  load.beam = beam;
+  load.s = s;
+  load.value = std::move(value);
+  const int element = std::min(static_cast<int>(std::floor(s / mesh.element_length)), mesh.num_elements - 1);
+  const double xi = (s - element * mesh.element_length) / mesh.element_length;
+  const hermite::Row4 n = hermite::N(xi, mesh.element_length);
+  for (int j = 0; j < 4; ++j) {
+    const int f = mesh.full_to_free[2 * element + j];
+    load.cols[j] = f >= 0 ? beams[static_cast<std::size_t>(beam)].offset + f : -1;
+    load.weights[j] = n[j];
+  }
+  auto& applied = data_.applied;
+  applied.erase(std::remove_if(applied.begin(), applied.end(),
+                               [&](const CoupledData::AppliedLoad& a) { return a.beam == beam && a.s == s; }),
+                applied.end());
+  applied.push_back(std::move(load));
+}
+
+bool CoupledDynamics::add_applied_loads(double t, double* fc) const {
+  for (const CoupledData::AppliedLoad& a : data_.applied) {
+    const double v = a.value(t);
+    for (int j = 0; j < 4; ++j)
+      if (a.cols[j] >= 0 && a.weights[j] != 0.0) fc[a.cols[j]] += v * a.weights[j];
+  }
+  return !data_.applied.empty();
 }
 
 void CoupledDynamics::impose_motion(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd) {

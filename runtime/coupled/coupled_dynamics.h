@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -59,6 +60,7 @@ struct CoupledData {
   Eigen::VectorXd fc_extra;
   // The beams: loads, free accelerations a_c0 = M_c^-1 (P + f_c - C q' - K q).
   Eigen::VectorXd rc, ac0, tmp;
+  Eigen::VectorXd ldlt;  // the sparse solves' workspace (linalg/sparse_ldlt_solve.h)
   std::vector<LowRankStructure::Workspace> structures;
   // Constraints: values, W = M_c^-1 J_c^T, H = J_c W, g_c = J_c a_c0, and
   // the columns M_c^-1 e_k of the beam DOFs contacts have touched (a slider
@@ -74,8 +76,17 @@ struct CoupledData {
   // Split coordinates: the q_c, q_c' with the DOFs the forces read made
   // nodal, those DOFs, eta - zeta per split structure and its rate, the kept
   // modes' loads and accelerations.
-  Eigen::VectorXd split_qc, split_qcd, split_delta, split_delta_rate, split_g, split_acc;
+  Eigen::VectorXd split_qc, split_qcd, split_delta, split_delta_rate, split_acc;
   std::vector<int> split_read;
+  // Loads the caller sets while a run goes (CoupledDynamics::set_applied_load).
+  struct AppliedLoad {
+    int beam = 0;
+    double s = 0.0;                     // m along the beam
+    int cols[4] = {-1, -1, -1, -1};     // q_c columns of the element's DOFs (-1: fixed)
+    double weights[4] = {0, 0, 0, 0};   // the shape functions at s
+    std::function<double(double)> value;  // N at t
+  };
+  std::vector<AppliedLoad> applied;
 };
 
 class CoupledDynamics {
@@ -153,6 +164,15 @@ class CoupledDynamics {
   const SpringContactState& spring_state(int k) const;
   const LinkState& link_state(int k) const;
   const ForceState& force_state(int element) const { return *data_.forces[static_cast<std::size_t>(element)]; }
+
+  /// A point load on beam `beam` at s m, value(t) in N along the beam's
+  /// transverse direction, from now on: an input the caller sets between
+  /// steps, not part of the model (it replaces one set before at the same
+  /// beam and point). @throws std::invalid_argument for a beam index out of
+  /// range or s off the beam.
+  void set_applied_load(int beam, double s, std::function<double(double)> value);
+  /// Adds the applied loads at t to f_c (nc entries); true if there are any.
+  bool add_applied_loads(double t, double* fc) const;
 
   /// Driven joints (`motion:`): their rigid coordinates, model order. In
   /// evaluate() their q and q' are those of the motion at t, whatever the

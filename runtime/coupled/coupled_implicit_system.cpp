@@ -61,6 +61,7 @@ void CoupledImplicitSystem::element_forces(double t, const Eigen::VectorXd& q, c
   ForceSink sink{qb_force_.data(), fc_.data()};
   const auto& forces = model_.forces();
   for (std::size_t e = 0; e < forces.size(); ++e) forces[e]->add_force(args, *states_[e], sink);
+  dyn_->add_applied_loads(t, fc_.data());
 }
 
 void CoupledImplicitSystem::residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,

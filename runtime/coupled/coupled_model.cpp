@@ -18,7 +18,8 @@ std::vector<BeamMesh> meshes_of(const std::vector<CoupledBeam>& beams) {
 }  // namespace
 
 CoupledModel::CoupledModel(const mbfe_model_v1& kernels, CoupledBeams beams, std::vector<BodyInertia> bodies,
-                           const std::vector<ir::Link>& links, const std::vector<double>& link_rests)
+                           const std::vector<ir::Link>& links, const std::vector<double>& link_rests,
+                           const std::vector<ir::Contact>& contacts)
     : kernels_(kernels),
       beams_(std::move(beams.beams)),
       structures_(std::move(beams.structures)),
@@ -80,7 +81,10 @@ CoupledModel::CoupledModel(const mbfe_model_v1& kernels, CoupledBeams beams, std
   for (int c = 0; c < kernels.num_contacts; ++c) {
     if (kernels.contacts[c].type != 2) continue;
     const int beam = kernels.contacts[c].beam;
-    auto spring = std::make_unique<SliderSpringForce>(kernels, c, meshes[beam], constraints_.beam_offset(beam));
+    SpringLaw law;
+    if (c < static_cast<int>(contacts.size()) && contacts[c].law == ir::ContactLaw::kHertz)
+      law = {true, contacts[c].coefficient};
+    auto spring = std::make_unique<SliderSpringForce>(kernels, c, meshes[beam], constraints_.beam_offset(beam), law);
     springs_.push_back(spring.get());
     spring_elements_.push_back(static_cast<int>(forces_.size()));
     forces_.push_back(std::move(spring));

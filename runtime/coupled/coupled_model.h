@@ -39,12 +39,15 @@ class CoupledModel {
 
   /// `kernels` (which must outlive the model), the beams and their adjusted
   /// structures, body inertias (for messages), the links with their rest
-  /// offsets (`link_rests`, one per link: the IR's, or form finding's).
+  /// offsets (`link_rests`, one per link: the IR's, or form finding's), the
+  /// contacts of the IR (`contacts`, model order; empty: every slider_spring
+  /// takes the linear law of its kernels).
   /// @throws std::invalid_argument for beams, structures or contacts that do
   ///         not fit, driven joints with constraint contacts;
   ///         std::runtime_error if a beam's mass matrix is not positive definite.
   CoupledModel(const mbfe_model_v1& kernels, CoupledBeams beams, std::vector<BodyInertia> bodies = {},
-               const std::vector<ir::Link>& links = {}, const std::vector<double>& link_rests = {});
+               const std::vector<ir::Link>& links = {}, const std::vector<double>& link_rests = {},
+               const std::vector<ir::Contact>& contacts = {});
 
   const mbfe_model_v1& kernels() const { return kernels_; }
   int nb() const { return nb_; }                 // rigid coordinates

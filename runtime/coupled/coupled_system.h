@@ -35,7 +35,7 @@ class CoupledSystem : public OdeSystem {
     full_state(t, y, q, qd);
   }
   /// Multipliers, residuals and slider positions at (t, y).
-  virtual ContactReport report(double t, const Eigen::VectorXd& y) = 0;
+  virtual const ContactReport& report(double t, const Eigen::VectorXd& y) = 0;
 
  protected:
   std::shared_ptr<CoupledDynamics> dyn_;

@@ -82,4 +82,30 @@ SplitSpectrum split_growing(const StateSpectrum& spectrum) {
   return out;
 }
 
+namespace {
+
+double largest_modulus(const StateSpectrum& spectrum) {
+  double largest = 0.0;
+  for (const auto& l : spectrum.eigenvalues) largest = std::max(largest, std::abs(l));
+  return largest;
+}
+
+}  // namespace
+
+StateSpectrum with_zero_modes(const StateSpectrum& spectrum) {
+  const double zero = kZeroModeRel * largest_modulus(spectrum);
+  std::vector<std::complex<double>> ev = spectrum.eigenvalues;
+  for (auto& l : ev)
+    if (std::abs(l) <= zero) l = 0.0;
+  StateSpectrum out = spectrum_from_eigenvalues(std::move(ev));
+  out.complete = spectrum.complete;
+  return out;
+}
+
+int growing_beyond_noise(const StateSpectrum& spectrum) {
+  const double noise = kLinearizationNoiseRel * largest_modulus(spectrum);
+  return static_cast<int>(std::count_if(spectrum.eigenvalues.begin(), spectrum.eigenvalues.end(),
+                                        [noise](const std::complex<double>& l) { return l.real() > noise; }));
+}
+
 }  // namespace mbfe::runtime

@@ -78,4 +78,39 @@ constexpr double kRoundingRe = 1e-9;
 
 SplitSpectrum split_growing(const StateSpectrum& spectrum);
 
+/// A linearisation's eigenvalues carry the error of its difference quotients
+/// (runtime/coupled/linearization.h: central differences with a relative
+/// step of 1e-6, so about eps / 1e-6 = 2e-10 of the terms an acceleration is
+/// summed from, amplified where those terms cancel: the adjusted beams'
+/// low-rank operators subtract terms k* / omega_1^2 ~ 1e4 times the result).
+/// The eigenvalues inherit it relative to the largest |lambda|: an undamped
+/// mode of the shipped vehicle models comes out with Re up to +6.7e-9
+/// max |lambda| (adjusted). A positive real part up to this share of
+/// max |lambda| is that noise, not growth of the motion: it is not counted as
+/// growing (the eigenvalue is still left out of the limits, as every Re > 0
+/// is). The constant is 15 times the largest measured; a true growth that slow
+/// is not what step limits are about: at RK4's limit (~2.8 / max |lambda|) it
+/// grows by exp(2.8e-7 N) over N steps, 3 % in 1e5.
+inline constexpr double kLinearizationNoiseRel = 1e-7;
+
+/// A zero mode (a driven coordinate, a rigid-body motion, a neutral
+/// equilibrium) has an exactly zero Jacobian column and comes out of the
+/// eigen-solver at ~1e-16 max |lambda| (measured on the shipped vehicle
+/// models); an eigenvalue below this share of max |lambda| is set to 0. A
+/// physical mode that slow turns by 2.8e-10 rad per step at RK4's limit:
+/// nothing a step limit depends on. (The tangents' spectrum,
+/// tangent_spectrum.h, has the driven coordinates' pairs exactly zero. A free
+/// coordinate with neither stiffness nor damping is a defective zero pair,
+/// which round-off splits into +-sqrt(eps) ~ 1e-8 max |lambda|: above this,
+/// but below kLinearizationNoiseRel, so not counted as growing, and its
+/// mirror image sets no limit the fast modes do not set first.)
+inline constexpr double kZeroModeRel = 1e-10;
+
+/// The spectrum with every |lambda| <= kZeroModeRel max |lambda| set to 0.
+StateSpectrum with_zero_modes(const StateSpectrum& spectrum);
+
+/// The eigenvalues with Re > kLinearizationNoiseRel max |lambda|: the motion's
+/// own growth, beyond the linearisation's noise.
+int growing_beyond_noise(const StateSpectrum& spectrum);
+
 }  // namespace mbfe::runtime

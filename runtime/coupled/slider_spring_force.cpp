@@ -17,12 +17,25 @@ int element_at(const BeamMesh& beam, double s) {
 
 }  // namespace
 
-SliderSpringForce::SliderSpringForce(const mbfe_model_v1& model, int index, BeamMesh mesh, int offset)
+SliderSpringForce::SliderSpringForce(const mbfe_model_v1& model, int index, BeamMesh mesh, int offset, SpringLaw law)
     : kernels_(model.contacts[index]), index_(index), nb_(model.num_coordinates), offset_(offset),
-      mesh_(std::move(mesh)) {
+      mesh_(std::move(mesh)), law_(law) {
   if (kernels_.type != 2)
     throw std::invalid_argument("contact " + std::to_string(index) + " is not a slider_spring");
   name_ = kernels_.name ? kernels_.name : "contact " + std::to_string(index);
+  if (law_.hertz && !(law_.coefficient > 0.0 && std::isfinite(law_.coefficient)))
+    throw std::invalid_argument("contact '" + name_ + "': a Hertzian coefficient must be positive");
+}
+
+double SliderSpringForce::law_force(double delta, double rate) const {
+  if (!law_.hertz) return kernels_.stiffness * delta + kernels_.damping * rate;
+  if (!(delta > 0.0)) return 0.0;
+  return law_.coefficient * delta * std::sqrt(delta) + kernels_.damping * rate;
+}
+
+double SliderSpringForce::law_stiffness(double delta) const {
+  if (!law_.hertz) return kernels_.stiffness;
+  return delta > 0.0 ? 1.5 * law_.coefficient * std::sqrt(delta) : 0.0;
 }
 
 std::unique_ptr<ForceState> SliderSpringForce::make_state() const {
@@ -74,10 +87,12 @@ void SliderSpringForce::add_force(const ForceArgs& x, ForceState& state, ForceSi
   for (int j = 0; j < nb_; ++j) st.rate += jb[j] * x.vb[j];
   for (int j = 0; j < 4; ++j)
     if (g.cols[j] >= 0) st.rate += g.je[j] * qed[j];
-  double force = kernels_.stiffness * st.delta + kernels_.damping * st.rate;
+  double force = law_force(st.delta, st.rate);
   if (kernels_.unilateral && (st.delta <= 0.0 || force < 0.0)) force = 0.0;
   st.force = force;
-  g.pressing = !kernels_.unilateral || force > 0.0;
+  // Apart, a Hertzian contact is no spring at all (bilateral or not).
+  g.pressing = law_.hertz ? st.delta > 0.0 && (!kernels_.unilateral || force > 0.0)
+                          : !kernels_.unilateral || force > 0.0;
   if (force == 0.0) return;
   for (int j = 0; j < nb_; ++j) out.fb[j] -= jb[j] * force;
   for (int j = 0; j < 4; ++j)
@@ -89,7 +104,7 @@ void SliderSpringForce::add_tangent(const ForceArgs&, const ForceState& state, d
   const State& self = static_cast<const State&>(state);
   const SpringGradient& g = self.gradient;
   if (!g.pressing) return;
-  const double w = c_q * kernels_.stiffness + c_v * kernels_.damping;
+  const double w = c_q * law_stiffness(self.contact.delta) + c_v * kernels_.damping;
   // g over the rigid coordinates, then the 4 beam DOFs (at nb + column).
   std::vector<std::pair<int, double>>& entries = self.entries;
   entries.clear();

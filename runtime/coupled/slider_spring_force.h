@@ -14,13 +14,22 @@
 // A contact pressed from the +w side (`side: below`, a pantograph under a
 // contact wire) uses delta = y_P - w(s) and the opposite gradient.
 //
+// Law hertz (a wheel on a rail, docs/contacts.md): N = C_H delta^1.5 +
+// c delta' while delta > 0, and N = 0 when delta <= 0 whatever `unilateral`
+// says (a Hertzian contact has no tension branch); C_H in N/m^1.5 comes from
+// the model (the generated kernels carry the linear stiffness only).
+//
 // Unilateral: N = 0 when delta <= 0 (apart) or k delta + c delta' < 0 (the
 // damper would pull): the contact never pulls. Off the beam (s outside
 // [0, L]) the contact is inactive: vehicles drive on and off.
 //
-// Tangent: k g g^T and c g g^T while it presses, g = d delta / dq. The change
-// of g itself (the point sliding over the shape functions, N dg/dq) is left
-// out: a Newton matrix, not an exact Jacobian. Along q_c and q' it is exact.
+// Tangent: k g g^T and c g g^T while it presses, g = d delta / dq; Hertz's
+// k is dN/d delta = 1.5 C_H delta^0.5, in closed form. The change
+// of g itself is left out, N dg/dq and the damper's c (dg/dq) q' (g's rigid
+// part holds the beam's slope under the point, so a point moving along the
+// beam makes delta' depend on q_c): a Newton matrix, not an exact Jacobian.
+// It is exact along q' everywhere, and along q_c in the beam's rows when the
+// bodies are at rest.
 #pragma once
 
 #include <Eigen/Core>
@@ -33,6 +42,13 @@
 #include "runtime/structure/beam_mesh.h"
 
 namespace mbfe::runtime {
+
+/// The force law of a slider_spring (ir::ContactLaw): the linear law takes
+/// the generated kernels' stiffness; Hertz's takes its coefficient here.
+struct SpringLaw {
+  bool hertz = false;
+  double coefficient = 0.0;  // N/m^1.5 (hertz)
+};
 
 /// One spring contact at one state.
 struct SpringContactState {
@@ -63,14 +79,20 @@ class SliderSpringForce final : public ForceElement {
   };
 
   /// Contact `index` of `model` (type 2), on the beam `mesh` whose free DOFs
-  /// start at `offset` in q_c. @throws std::invalid_argument if it is not a
-  /// slider_spring.
-  SliderSpringForce(const mbfe_model_v1& model, int index, BeamMesh mesh, int offset);
+  /// start at `offset` in q_c, with force law `law`. @throws
+  /// std::invalid_argument if it is not a slider_spring, or a Hertz law has a
+  /// coefficient that is not positive.
+  SliderSpringForce(const mbfe_model_v1& model, int index, BeamMesh mesh, int offset, SpringLaw law = {});
 
   const std::string& name() const override { return name_; }
   /// Model contact index.
   int contact() const { return index_; }
-  double stiffness() const { return kernels_.stiffness; }  // N/m
+  double stiffness() const { return kernels_.stiffness; }  // N/m (linear law)
+  const SpringLaw& law() const { return law_; }
+  /// N(delta, delta') of its law, compression positive, before the
+  /// unilateral clip (N); and dN/d delta (N/m) at delta.
+  double law_force(double delta, double rate) const;
+  double law_stiffness(double delta) const;
   double damping() const { return kernels_.damping; }      // N s/m
 
   std::unique_ptr<ForceState> make_state() const override;
@@ -83,6 +105,7 @@ class SliderSpringForce final : public ForceElement {
   const mbfe_contact_kernels_v1& kernels_;
   int index_, nb_, offset_;
   BeamMesh mesh_;
+  SpringLaw law_;
   std::string name_;
 };
 

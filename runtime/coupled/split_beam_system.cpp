@@ -100,7 +100,7 @@ void SplitBeamSystem::full_state_at(double, const Eigen::VectorXd& y, const std:
   }
 }
 
-ContactReport SplitBeamSystem::report(double t, const Eigen::VectorXd& y) {
+const ContactReport& SplitBeamSystem::report(double t, const Eigen::VectorXd& y) {
   // A run reports each accepted state twice (its tallies, its row); the
   // second time, nothing has been evaluated since the first.
   if (report_valid_ && t == report_t_ && y.size() == report_y_.size() && y == report_y_) return report_;

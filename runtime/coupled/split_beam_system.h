@@ -33,7 +33,7 @@ class SplitBeamSystem : public CoupledSystem {
   /// Only the rigid coordinates and the listed beam DOFs made nodal.
   void full_state_at(double t, const Eigen::VectorXd& y, const std::vector<int>& beam_dofs, Eigen::VectorXd& q,
                      Eigen::VectorXd& qd) override;
-  ContactReport report(double t, const Eigen::VectorXd& y) override;
+  const ContactReport& report(double t, const Eigen::VectorXd& y) override;
 
  private:
   // q_, qd_, e_, ed_ from y (q_c of split beams: their uniform part).

@@ -1,8 +1,12 @@
 #include "runtime/damping/beam_model.h"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "runtime/modal/modal_analysis.h"
 
@@ -22,14 +26,23 @@ BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamA
   mo.dense_limit = options.dense_limit;
   mo.num_modes = part.dense ? 0 : std::min(options.sparse_modes, n - 1);
   const ir::Adjustment& adj = beam.adjustment;
-  if (!part.dense && options.modes_kept_by_cap && adj.active() && adj.policy == ir::AdjustmentPolicy::kCap &&
+  if (!part.dense && options.modes_kept_by_cap && adj.active() &&
+      (adj.policy == ir::AdjustmentPolicy::kCap || adj.policy == ir::AdjustmentPolicy::kMass) &&
       adj.scope == ir::AdjustmentScope::kBeam && adj.omega_limit > 0.0) {
     // A kept mode has |r_fast| <= omega_limit, so omega <= omega_limit.
     ModalOptions sliced = mo;
     sliced.up_to_omega = adj.omega_limit;
     sliced.slice_modes = options.slice_modes;
     try {
-      part.basis = modal_analysis(part.system, sliced);
+      std::string inputs;
+      if (options.modes_store) {
+        inputs = sliced_modes_inputs(part.system, sliced);
+        if (std::optional<ModalBasis> kept = options.modes_store->find(inputs, n)) part.basis = std::move(*kept);
+      }
+      if (part.basis.omega.size() == 0) {
+        part.basis = modal_analysis(part.system, sliced);
+        if (options.modes_store) options.modes_store->keep(inputs, part.basis);
+      }
     } catch (const std::exception& e) {
       // The original model does not need these modes: it still runs.
       part.kept_modes_unavailable = e.what();
@@ -51,11 +64,42 @@ BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamA
 }
 
 BeamModel analyse_beams(const ir::Model& model, const BeamAnalysisOptions& options) {
+  // The beams are independent: a model with a large one (seconds of spectrum
+  // slicing each) analyses them on threads of their own. Each beam's result
+  // is the same bits either way.
+  const std::size_t count = model.beams.size();
+  std::vector<BeamPart> parts(count);
+  std::vector<std::exception_ptr> failures(count);
+  const auto analyse = [&](std::size_t k) {
+    try {
+      parts[k] = analyse_beam(model.beams[k], model.gravity, options);
+    } catch (...) {
+      failures[k] = std::current_exception();
+    }
+  };
+  const bool large = std::any_of(model.beams.begin(), model.beams.end(), [&](const ir::Beam& b) {
+    return 2 * (b.elements + 1) > options.dense_limit;
+  });
+  const std::size_t threads =
+      large ? std::min<std::size_t>(count, std::max(1u, std::thread::hardware_concurrency())) : 1;
+  if (threads > 1) {
+    std::atomic<std::size_t> next{0};
+    std::vector<std::thread> pool;
+    for (std::size_t t = 0; t < threads; ++t)
+      pool.emplace_back([&]() {
+        for (std::size_t k = next++; k < count; k = next++) analyse(k);
+      });
+    for (std::thread& t : pool) t.join();
+  } else {
+    for (std::size_t k = 0; k < count; ++k) analyse(k);
+  }
+  for (const std::exception_ptr& failure : failures)
+    if (failure) std::rethrow_exception(failure);  // the first beam's in model order, as a serial loop would
+
   BeamModel out;
   std::vector<ModalDynamics> all_original, all_adjusted;
   bool complete = true;
-  for (const ir::Beam& b : model.beams) {
-    BeamPart part = analyse_beam(b, model.gravity, options);
+  for (BeamPart& part : parts) {
     part.offset = out.dof;
     out.dof += static_cast<int>(part.system.M.rows());
     out.any_adjustment = out.any_adjustment || part.has_adjustment;

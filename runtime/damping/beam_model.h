@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ir/model.h"
+#include "runtime/damping/beam_analysis_options.h"
 #include "runtime/damping/beam_ode.h"
 #include "runtime/damping/modal_adjustment.h"
 #include "runtime/fem/beam_system.h"
@@ -17,23 +18,6 @@
 #include "runtime/modal/state_spectrum.h"
 
 namespace mbfe::runtime {
-
-/// How far the modal analysis of a beam goes.
-struct BeamAnalysisOptions {
-  /// Beams up to this many DOFs get every mode (dense path).
-  int dense_limit = 2000;
-  /// Beams above dense_limit: 0 = refused (time integration and the stability
-  /// advisor use every mode); k > 0 = the lowest k modes by sparse Lanczos,
-  /// a partial spectrum (what `mbfe modal` shows of a large beam).
-  int sparse_modes = 0;
-  /// Beams above dense_limit whose adjustment is a per-beam cap: every mode
-  /// the cap keeps (omega <= omega_limit) and the first it changes, by
-  /// spectrum slicing, instead of sparse_modes: what the low-rank adjusted
-  /// operators need (a coupled model's time integration).
-  bool modes_kept_by_cap = false;
-  /// Modes per Lanczos run of that slicing (SlicedModalOptions::slice_modes).
-  int slice_modes = ModalOptions{}.slice_modes;
-};
 
 /// One beam: its finite-element system, modes and modal dynamics.
 struct BeamPart {

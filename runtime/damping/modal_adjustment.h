@@ -1,5 +1,5 @@
-// Modal adjustment of damping (Section 6 of the paper, eqs (24)-(27); read
-// docs/damping-adjustment.md says why the default is a cap).
+// Modal adjustment of damping (Section 6 of the paper, eqs (24)-(27);
+// docs/damping-adjustment.md says why a cap, and why mass is the default).
 //
 // Per mass-normalised mode j (K Phi = M Phi Omega^2) the model obeys
 // q'' + c_j q' + k_j q = p_j, with k_j = omega_j^2 and Rayleigh c_j = alpha +

@@ -10,6 +10,8 @@
 #pragma once
 
 #include <functional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "runtime/fem/beam_system.h"
@@ -26,9 +28,23 @@ struct NodalForce {
 /// (indices into the system's DOFs).
 using TimeLoadFn = std::function<void(double t, std::vector<NodalForce>& out)>;
 
+/// A load's value is not finite at some time of a run: a numerical fault of
+/// the run (it ends with the rows so far), not of the file, which was checked
+/// where the run starts (runtime/simulation/time_expressions.h). what() names
+/// the load, its text and position, the value and the time.
+class LoadValueError : public std::runtime_error {
+ public:
+  LoadValueError(const std::string& message, double t) : std::runtime_error(message), t_(t) {}
+  double t() const { return t_; }
+
+ private:
+  double t_;
+};
+
 /// Clears `out` and appends the time-dependent loads of `beam` at t (an index
 /// may appear more than once: add them up). Nothing is allocated once `out`
-/// has grown to its largest size.
+/// has grown to its largest size. @throws LoadValueError when a load's value
+/// at t is not finite.
 void time_dependent_loads(const BeamSystem& beam, double t, std::vector<NodalForce>& out);
 
 /// Position (m) of a moving load at time t.

@@ -1,12 +1,8 @@
 #include "runtime/integrators/simulation_driver.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <csignal>
-#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -15,64 +11,7 @@ namespace mbfe::runtime {
 
 namespace {
 
-volatile std::sig_atomic_t g_interrupted = 0;
-
-extern "C" void on_sigint(int) { g_interrupted = 1; }
-
-/// Installs the SIGINT handler for one run, restores the previous one after.
-class SigintGuard {
- public:
-  explicit SigintGuard(bool active) : active_(active) {
-    g_interrupted = 0;
-    if (active_) previous_ = std::signal(SIGINT, on_sigint);
-  }
-  ~SigintGuard() {
-    if (active_ && previous_ != SIG_ERR) std::signal(SIGINT, previous_);
-  }
-  SigintGuard(const SigintGuard&) = delete;
-  SigintGuard& operator=(const SigintGuard&) = delete;
-
- private:
-  bool active_;
-  void (*previous_)(int) = SIG_DFL;
-};
-
 using Clock = std::chrono::steady_clock;
-
-/// "12.3 %  4.5e+06 steps/s  7 s left" on one refreshed stderr line.
-class Progress {
- public:
-  Progress(bool enabled, std::int64_t total) : enabled_(enabled), total_(total), start_(Clock::now()) {
-    last_ = start_;
-  }
-  // Looking at the clock costs ~20 ns; do it every kEvery steps only.
-  static constexpr std::int64_t kEvery = 512;
-  void update(std::int64_t done) {
-    if (!enabled_ || done % kEvery != 0) return;
-    const auto now = Clock::now();
-    if (now - last_ < std::chrono::milliseconds(500)) return;
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double rate = done / std::max(elapsed, 1e-9);
-    const double left = (total_ - done) / std::max(rate, 1e-9);
-    std::fprintf(stderr, "\r%6.1f %%  %.3g steps/s  %.0f s left   ", 100.0 * done / std::max<std::int64_t>(total_, 1),
-                 rate, left);
-    std::fflush(stderr);
-    shown_ = true;
-  }
-  void finish() {
-    if (shown_) {
-      std::fprintf(stderr, "\r%60s\r", "");
-      std::fflush(stderr);
-    }
-  }
-
- private:
-  bool enabled_;
-  std::int64_t total_;
-  Clock::time_point start_, last_;
-  bool shown_ = false;
-};
 
 bool is_one_step(IntegratorKind kind) {
   return kind != IntegratorKind::kExplicitMidpoint && kind != IntegratorKind::kLinearMultistep;
@@ -80,8 +19,9 @@ bool is_one_step(IntegratorKind kind) {
 
 }  // namespace
 
-SimulationResult run_simulation(OdeSystem& system, const IntegratorSpec& integrator, const Eigen::VectorXd& y0,
-                                const SimulationOptions& options, const RowSink& sink) {
+FixedStepRun::FixedStepRun(OdeSystem& system, const IntegratorSpec& integrator, const Eigen::VectorXd& y0,
+                           const SimulationOptions& options)
+    : system_(system), options_(options) {
   if (!(options.step > 0.0) || !std::isfinite(options.step))
     throw std::invalid_argument("step must be a positive number of seconds");
   if (!(options.t_end >= options.t0)) throw std::invalid_argument("t_end must not be before t0");
@@ -95,99 +35,129 @@ SimulationResult run_simulation(OdeSystem& system, const IntegratorSpec& integra
   const double span = options.t_end - options.t0;
   // A step longer than the whole run is shortened to the run: one step to
   // t_end (it took none and called that completed).
-  const double h = options.step > span && span > 0.0 ? span : options.step;
+  h_ = options.step > span && span > 0.0 ? span : options.step;
   // Steps: one-step methods shorten the last one to land on t_end; multistep
   // methods keep h and stop at the last full step.
   constexpr double kTimeSlack = 1e-9;  // of a step: absorbs rounding in span / h
-  const double ratio = span / h;
+  const double ratio = span / h_;
   // Step numbers k and times t0 + k h stay exact up to 2^53 steps; beyond,
   // the count would not even fit the int64 it is cast to.
   constexpr double kMaxSteps = 9007199254740992.0;  // 2^53
   if (!(ratio <= kMaxSteps)) {
     std::ostringstream msg;
-    msg << "the run needs " << ratio << " steps ((t_end - t0) / step = " << span << " s / " << h
+    msg << "the run needs " << ratio << " steps ((t_end - t0) / step = " << span << " s / " << h_
         << " s), more than the limit of " << static_cast<std::int64_t>(kMaxSteps) << " (2^53)";
     throw std::invalid_argument(msg.str());
   }
   const bool one_step = is_one_step(integrator.kind);
   const std::int64_t full_steps = static_cast<std::int64_t>(std::floor(ratio + kTimeSlack));
-  const bool partial_last = one_step && ratio - full_steps > kTimeSlack;
-  const std::int64_t total = full_steps + (partial_last ? 1 : 0);
+  partial_last_ = one_step && ratio - full_steps > kTimeSlack;
+  total_ = full_steps + (partial_last_ ? 1 : 0);
+
+  stepper_ = make_stepper(integrator, system);
+  result_.step = h_;
+  result_.integrator = integrator.name;
+  result_.t = options.t0;
+  t_ = options.t0;
+  y_ = y0;
+  last_good_ = y0;
+  stepper_->reset(options.t0, y0);
+  y0_norm_ = y0.norm();
+  running_max_ = y0_norm_;
+}
+
+FixedStepRun::~FixedStepRun() = default;
+
+double FixedStepRun::time_of(std::int64_t k) const {
+  return (k == total_ && partial_last_) ? options_.t_end : options_.t0 + static_cast<double>(k) * h_;
+}
+
+bool FixedStepRun::step() {
+  if (finished()) return false;
+  if (options_.keep_going && !options_.keep_going(t_, result_.steps)) {
+    result_.status = SimulationStatus::kInterrupted;
+    return false;
+  }
+  const std::int64_t k = result_.steps + 1;
+  const double t_next = time_of(k);
+  last_good_ = y_;
+  try {
+    stepper_->step(t_, t_next - t_, y_);
+  } catch (const std::exception& e) {
+    y_ = last_good_;
+    result_.status = SimulationStatus::kFailed;
+    result_.message = e.what();
+    return false;
+  }
+  // R: the largest |y| up to the last power-of-two step (the header says why).
+  const double scale = std::max({y0_norm_, options_.reference_norm, trailing_max_});
+  // No scale yet (a system starting at rest, no reference given): only the
+  // finiteness check applies until the first power-of-two step sets R.
+  const double bound =
+      scale > 0.0 ? options_.divergence_factor * scale : std::numeric_limits<double>::infinity();
+  const double norm = y_.norm();
+  // Not finite is diverged whatever the bound, which is inf while the
+  // system has stayed at rest (a load that jumps to inf from rest).
+  if (!(norm <= bound) || !std::isfinite(norm)) {  // also catches nan
+    y_ = last_good_;
+    result_.status = SimulationStatus::kDiverged;
+    result_.norm = norm;
+    result_.bound = bound;
+    return false;
+  }
+  system_.after_step(t_next, y_);
+  if (options_.on_step) options_.on_step(t_next, y_);
+  t_ = t_next;
+  result_.t = t_;
+  result_.steps = k;
+  running_max_ = std::max(running_max_, norm);
+  if ((k & (k - 1)) == 0 && options_.reference_norm == 0.0) trailing_max_ = running_max_;
+  return true;
+}
+
+void FixedStepRun::interrupt() {
+  if (result_.status == SimulationStatus::kCompleted) result_.status = SimulationStatus::kInterrupted;
+}
+
+void FixedStepRun::reset_state(const Eigen::VectorXd& y) {
+  if (y.size() != y_.size() || !y.allFinite())
+    throw std::invalid_argument("the state set has " + std::to_string(y.size()) + " entries, expected " +
+                                std::to_string(y_.size()) + ", all finite");
+  y_ = y;
+  last_good_ = y;
+  stepper_->reset(t_, y_);
+}
+
+const SimulationResult& FixedStepRun::result() {
+  result_.newton = stepper_->newton_statistics();
+  return result_;
+}
+
+SimulationResult run_simulation(OdeSystem& system, const IntegratorSpec& integrator, const Eigen::VectorXd& y0,
+                                const SimulationOptions& options, const RowSink& sink) {
+  const auto start = Clock::now();
+  FixedStepRun run(system, integrator, y0, options);
+  const std::int64_t total = run.total_steps();
   std::int64_t every = options.every;
   if (every <= 0) every = std::max<std::int64_t>(1, (total + options.max_rows - 1) / std::max<std::int64_t>(options.max_rows, 1));
-
-  auto stepper = make_stepper(integrator, system);
-  SimulationResult result;
-  result.step = h;
-  result.integrator = integrator.name;
-  result.t = options.t0;
-
-  SigintGuard sigint(options.handle_sigint);
-  Progress progress(!options.quiet && isatty(fileno(stderr)), total);
-  const auto start = Clock::now();
-
-  Eigen::VectorXd y = y0, last_good = y0;
-  stepper->reset(options.t0, y0);
-  sink(options.t0, y);
-  result.rows = 1;
+  std::int64_t rows = 1;
+  sink(run.t(), run.y());
   bool last_emitted = true;
-
-  const double y0_norm = y0.norm();
-  double running_max = y0_norm;
-  double trailing_max = 0.0;  // R: max |y| up to the last power-of-two step
-  auto bound_now = [&]() {
-    const double scale = std::max({y0_norm, options.reference_norm, trailing_max});
-    // No scale yet (a system starting at rest, no reference given): only the
-    // finiteness check applies until the first power-of-two step sets R.
-    return scale > 0.0 ? options.divergence_factor * scale : std::numeric_limits<double>::infinity();
-  };
-
-  double t = options.t0;
-  for (std::int64_t k = 1; k <= total; ++k) {
-    if (g_interrupted) {
-      result.status = SimulationStatus::kInterrupted;
-      break;
-    }
-    const double t_next = (k == total && partial_last) ? options.t_end : options.t0 + k * h;
-    last_good = y;
-    try {
-      stepper->step(t, t_next - t, y);
-    } catch (const std::exception& e) {
-      y = last_good;
-      result.status = SimulationStatus::kFailed;
-      result.message = e.what();
-      break;
-    }
-    const double norm = y.norm();
-    const double bound = bound_now();
-    if (!(norm <= bound)) {  // also catches nan
-      y = last_good;
-      result.status = SimulationStatus::kDiverged;
-      result.norm = norm;
-      result.bound = bound;
-      break;
-    }
-    system.after_step(t_next, y);
-    if (options.on_step) options.on_step(t_next, y);
-    t = t_next;
-    result.steps = k;
-    running_max = std::max(running_max, norm);
-    if ((k & (k - 1)) == 0 && options.reference_norm == 0.0) trailing_max = running_max;
+  while (run.step()) {
+    const std::int64_t k = run.steps();
     last_emitted = (k % every == 0) || k == total;
     if (last_emitted) {
-      sink(t, y);
-      ++result.rows;
+      sink(run.t(), run.y());
+      ++rows;
     }
-    progress.update(k);
   }
-  result.t = t;
   if (!last_emitted) {
-    sink(t, y);
-    ++result.rows;
+    sink(run.t(), run.y());
+    ++rows;
   }
-  progress.finish();
+  SimulationResult result = run.result();
+  result.rows = rows;
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  result.newton = stepper->newton_statistics();
   return result;
 }
 

@@ -1,6 +1,9 @@
-// Runs an OdeSystem with one integrator at a fixed step from t0 to t_end,
-// hands decimated rows to a sink, watches for divergence, shows progress and
-// stops cleanly on SIGINT.
+// Runs an OdeSystem with one integrator at a fixed step from t0 to t_end:
+// FixedStepRun takes the steps one at a time and watches for divergence;
+// run_simulation loops over it and hands decimated rows to a sink. Whoever
+// runs it decides when to stop early (`keep_going`: a caller's Ctrl-C, a
+// deadline) and shows progress; the runtime installs no signal handler and
+// prints nothing.
 //
 //   runtime::SimulationOptions opt;
 //   opt.step = 1.4e-5; opt.t_end = 1.0;
@@ -32,6 +35,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "runtime/integrators/integrator.h"
@@ -52,15 +56,12 @@ struct SimulationOptions {
   std::int64_t max_rows = 10000;  // used when every == 0
   double divergence_factor = 1.0e6;
   double reference_norm = 0.0;    // see the header comment
-  /// Progress line on stderr (percentage, steps/s, time left), refreshed about
-  /// twice a second, only when stderr is a terminal and quiet is false.
-  bool quiet = false;
-  /// Install a SIGINT handler for the run (restored afterwards): Ctrl-C stops
-  /// after the current step with status kInterrupted.
-  bool handle_sigint = true;
   /// Called after every accepted step (after OdeSystem::after_step) with the
   /// state the step reached; empty = nothing.
   std::function<void(double t, const Eigen::VectorXd& y)> on_step;
+  /// Asked before every step with the time reached and the steps taken;
+  /// false stops the run there (status kInterrupted). Empty = go on.
+  std::function<bool(double t, std::int64_t steps)> keep_going;
 };
 
 enum class SimulationStatus { kCompleted, kDiverged, kInterrupted, kFailed };
@@ -81,6 +82,54 @@ struct SimulationResult {
 };
 
 using RowSink = std::function<void(double t, const Eigen::VectorXd& y)>;
+
+/// One fixed-step run, a step at a time: what run_simulation loops over, and
+/// what a caller that steps a model between its own actions holds.
+class FixedStepRun {
+ public:
+  /// Starts at options.t0 from y0 (size system.size()); `system` must outlive
+  /// the run. @throws std::invalid_argument for bad options (step <= 0,
+  /// t_end < t0, too many steps, y0 of the wrong size or not finite) or an
+  /// integrator the system cannot take.
+  FixedStepRun(OdeSystem& system, const IntegratorSpec& integrator, const Eigen::VectorXd& y0,
+               const SimulationOptions& options);
+  ~FixedStepRun();
+
+  double t() const { return t_; }
+  const Eigen::VectorXd& y() const { return y_; }
+  std::int64_t steps() const { return result_.steps; }
+  /// Steps to t_end (the last one shortened to land on it, one-step methods).
+  std::int64_t total_steps() const { return total_; }
+  /// The step h the run takes (a step longer than the run is shortened to it).
+  double step_size() const { return h_; }
+  /// The time step k ends at.
+  double time_of(std::int64_t k) const;
+  /// Reached t_end, or stopped (failed, diverged, interrupted).
+  bool finished() const { return result_.steps >= total_ || result_.status != SimulationStatus::kCompleted; }
+  /// Takes the next step (after asking keep_going): true if it was accepted;
+  /// false when the run has finished or this step failed, diverged or was
+  /// stopped (the state is then the last one accepted; result() says why).
+  bool step();
+  /// Stops the run here (status kInterrupted): a caller's decision.
+  void interrupt();
+  /// Replaces the state at the current time (a caller set it): steppers with
+  /// history start again from it.
+  void reset_state(const Eigen::VectorXd& y);
+  /// The run so far (Newton counts brought up to date; wall_seconds is the
+  /// caller's to fill).
+  const SimulationResult& result();
+
+ private:
+  OdeSystem& system_;
+  SimulationOptions options_;
+  std::unique_ptr<Stepper> stepper_;
+  double h_ = 0.0, t_ = 0.0;
+  std::int64_t total_ = 0;
+  bool partial_last_ = false;
+  Eigen::VectorXd y_, last_good_;
+  double y0_norm_ = 0.0, running_max_ = 0.0, trailing_max_ = 0.0;
+  SimulationResult result_;
+};
 
 /// Integrates `system` from y0 (size system.size()). Never throws for a
 /// numerical fault of the system: that is kFailed with `message` (rows so far

@@ -4,6 +4,7 @@
 
 #include "runtime/structure/adjusted_structures.h"
 #include "runtime/errors/invalid_input.h"
+#include "runtime/simulation/adjustment_estimate.h"
 
 namespace mbfe::runtime {
 
@@ -34,7 +35,24 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   // adjustment can be built from them is checked below.
   BeamAnalysisOptions options = beams;
   if (kind_ == ModelKind::kCoupled && options.sparse_modes == 0) options.sparse_modes = kLargeBeamModes;
-  if (kind_ == ModelKind::kCoupled) options.modes_kept_by_cap = true;
+  if (kind_ == ModelKind::kCoupled && !options.original_only) options.modes_kept_by_cap = true;
+  // omega_limit: auto, chosen for its tolerance before the beams are adjusted.
+  for (std::size_t i = 0; i < model_.beams.size(); ++i) {
+    ir::Adjustment& a = model_.beams[i].adjustment;
+    if (!a.present || !a.omega_limit_auto) continue;
+    if (a.policy != ir::AdjustmentPolicy::kNone) {
+      try {
+        a.omega_limit = choose_omega_limit(model_, i, options);
+      } catch (const InvalidInput&) {
+        throw;
+      } catch (const std::invalid_argument& e) {
+        throw InvalidInput(model_.source_path + ": " + e.what());
+      }
+    } else {
+      a.omega_limit = 1.0;  // policy none changes nothing
+    }
+    // omega_limit_auto stays set: the limit was chosen (the run's record says so).
+  }
   try {
     beams_ = analyse_beams(model_, options);
   } catch (const std::invalid_argument& e) {
@@ -53,18 +71,11 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
       adjustment_unavailable_at_ = model_.beams[e.beam].adjustment.loc;
     }
   }
-  // Policy mass changes the capped modes' modal mass, a low-rank update of M
-  // that the coupled runtime does not build yet: refused rather than run as
-  // some other model.
-  if (kind_ == ModelKind::kCoupled && adjustment_unavailable_.empty())
+  if (options.original_only && beams_.any_adjustment) {
+    adjustment_unavailable_ = "model '" + model_.name + "' was assembled for runs of the original model only";
     for (const ir::Beam& b : model_.beams)
-      if (b.adjustment.active() && b.adjustment.policy == ir::AdjustmentPolicy::kMass) {
-        adjustment_unavailable_at_ = b.adjustment.loc;
-        adjustment_unavailable_ = "beam '" + b.name +
-                                  "': policy mass is not yet available in coupled models; use policy cap, or run "
-                                  "the original model (--adjust off)";
-        break;
-      }
+      if (b.adjustment.active()) adjustment_unavailable_at_ = b.adjustment.loc;
+  }
   for (const BeamPart& part : beams_.beams) {
     // The low-rank adjusted operators keep the computed modes and cap the
     // rest uniformly: right only if every mode left out is one the cap changes.
@@ -72,13 +83,15 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
     const ir::Beam& b = model_.beams[&part - beams_.beams.data()];
     if (b.adjustment.scope == ir::AdjustmentScope::kJoined) continue;
     if (adjustment_unavailable_.empty() && part.has_adjustment && !part.basis.complete &&
-        !(part.adjusted.adjusted > 0 && part.adjusted.change.back() == ModeChange::kAdjusted && part.adjusted.uniform)) {
+        !(part.adjusted.adjusted > 0 && part.adjusted.change.back() == ModeChange::kAdjusted &&
+          (part.adjusted.uniform || part.adjusted.policy == ir::AdjustmentPolicy::kMass))) {
       adjustment_unavailable_at_ = b.adjustment.loc;
       std::string why;
       if (!part.kept_modes_unavailable.empty())
         why = "the modes its cap keeps could not be found (" + part.kept_modes_unavailable + ")";
-      else if (b.adjustment.policy != ir::AdjustmentPolicy::kCap)
-        why = "its policy needs every mode; beyond that limit only a cap (policy cap) is built, from the modes it keeps";
+      else if (b.adjustment.policy != ir::AdjustmentPolicy::kCap && b.adjustment.policy != ir::AdjustmentPolicy::kMass)
+        why = "its policy needs every mode; beyond that limit only the policies cap and mass are built, from the "
+              "modes they keep";
       else
         why = "its " + std::to_string(part.basis.omega.size()) + " lowest modes do not reach its adjustment's limit";
       adjustment_unavailable_ = "beam '" + part.system.name + "' has " + std::to_string(part.system.M.rows()) +
@@ -95,10 +108,10 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   if (kind_ == ModelKind::kCoupled) {
     try {
       original_coupled_ = std::make_shared<const CoupledModel>(*kernels_, coupled_beams(beams_, false), bodies_,
-                                                              model_.links, links_.rest);
+                                                              model_.links, links_.rest, model_.contacts);
       if (beams_.any_adjustment && adjustment_unavailable_.empty())
         adjusted_coupled_ = std::make_shared<const CoupledModel>(*kernels_, coupled_beams(beams_, true, joined_),
-                                                                bodies_, model_.links, links_.rest);
+                                                                bodies_, model_.links, links_.rest, model_.contacts);
     } catch (const std::invalid_argument& e) {
       throw InvalidInput(model_.source_path + ": " + e.what());
     }

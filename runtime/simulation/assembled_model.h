@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ir/model.h"
+#include "runtime/simulation/model_kind.h"
 #include "runtime/abi/mbfe_model_abi.h"
 #include "runtime/damping/beam_model.h"
 #include "runtime/coupled/coupled_dynamics.h"
@@ -22,13 +23,6 @@
 #include "runtime/structure/link_form_finding.h"
 
 namespace mbfe::runtime {
-
-/// kRigid: bodies only; kBeams: beams only; kCoupled: bodies and beams
-/// (contacts optional).
-enum class ModelKind { kRigid, kBeams, kCoupled };
-
-/// @throws InvalidInput for a model with neither bodies nor beams.
-ModelKind model_kind(const ir::Model& model);
 
 class AssembledModel {
  public:

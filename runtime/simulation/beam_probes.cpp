@@ -1,28 +1,8 @@
 #include "runtime/simulation/beam_probes.h"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
-
 #include "runtime/errors/invalid_input.h"
 
 namespace mbfe::runtime {
-
-ProbeSpec parse_probe(const std::string& text) {
-  const auto at = text.find('@');
-  if (at == std::string::npos)
-    throw InvalidInput("--probe '" + text + "': expected BEAM@S (S in m along the beam), e.g. beam1@0.5");
-  ProbeSpec spec;
-  spec.label = text;
-  spec.beam = text.substr(0, at);
-  const std::string number = text.substr(at + 1);
-  char* end = nullptr;
-  errno = 0;
-  spec.s = std::strtod(number.c_str(), &end);
-  if (number.empty() || end != number.c_str() + number.size() || errno == ERANGE || !std::isfinite(spec.s))
-    throw InvalidInput("--probe " + text + ": expected a number, got '" + number + "'");
-  return spec;
-}
 
 double BeamProbe::value(const double* qc) const {
   double v = 0.0;
@@ -38,23 +18,36 @@ std::vector<BeamProbe> resolve_probes(const std::vector<ProbeSpec>& specs, const
     // The label is the column's name: two alike would be two columns of one name.
     for (const BeamProbe& earlier : out)
       if (earlier.label == spec.label)
-        throw InvalidInput("--probe '" + spec.label + "' is given twice; each probe is a column and needs a name of its own");
+        throw InvalidRequest("probes", "'" + spec.label + "' is given twice; each probe is a column and needs a name of its own");
     BeamProbe p;
     p.label = spec.label;
+    p.acceleration = spec.acceleration;
+    if (spec.body) {
+      for (std::size_t i = 0; i < model.bodies.size(); ++i)
+        if (model.bodies[i].name == spec.beam) p.body = static_cast<int>(i);
+      if (p.body < 0) {
+        std::string names;
+        for (const auto& b : model.bodies) names += (names.empty() ? "" : ", ") + b.name;
+        throw InvalidRequest("probes", "'" + spec.label + "': no body named '" + spec.beam + "' (bodies: " +
+                                           (names.empty() ? "none" : names) + ")");
+      }
+      out.push_back(std::move(p));
+      continue;
+    }
     for (std::size_t i = 0; i < model.beams.size(); ++i)
       if (model.beams[i].name == spec.beam) p.beam = static_cast<int>(i);
     if (p.beam < 0) {
       std::string names;
       for (const auto& b : model.beams) names += (names.empty() ? "" : ", ") + b.name;
-      throw InvalidInput("--probe '" + spec.label + "': no beam named '" + spec.beam + "' (beams: " +
-                         (names.empty() ? "none" : names) + ")");
+      throw InvalidRequest("probes", "'" + spec.label + "': no beam named '" + spec.beam + "' (beams: " +
+                                         (names.empty() ? "none" : names) + ")");
     }
     const BeamPart& part = beams.beams[p.beam];
     p.offset = part.offset;
     try {
       p.weights = point_weights(part.system, spec.s);
     } catch (const std::invalid_argument& e) {
-      throw InvalidInput("--probe '" + spec.label + "': " + e.what());
+      throw InvalidRequest("probes", "'" + spec.label + "': " + e.what());
     }
     out.push_back(std::move(p));
   }

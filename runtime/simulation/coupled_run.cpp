@@ -1,8 +1,10 @@
-// simulate() for a coupled model (bodies, beams and contacts), eqs (14)-(17)
-// of the paper. The partitioned formulation (default) integrates
-// y = [u; q_c; u'; q_c'] with the dependent rigid coordinates closed by Newton
-// at every evaluation; the augmented one y = [q_b; q_c; q_b'; q_c'] with the
-// multipliers (a cross-check; |Phi| drifts).
+// A coupled model (bodies, beams and contacts), eqs (14)-(17) of the paper.
+// The formulation is chosen from the request: the partitioned one (default)
+// integrates y = [u; q_c; u'; q_c'] with the dependent rigid coordinates
+// closed by Newton at every evaluation, in split coordinates when its adjusted
+// beams allow; the augmented one y = [q_b; q_c; q_b'; q_c'] with the
+// multipliers (a cross-check; |Phi| drifts); the implicit integrators the
+// index-3 form.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -11,24 +13,30 @@
 #include "runtime/coupled/augmented_system.h"
 #include "runtime/coupled/coordinate_partitioning.h"
 #include "runtime/coupled/coupled_implicit_system.h"
+#include "runtime/coupled/coupled_tangents.h"
 #include "runtime/coupled/linearization.h"
-#include "runtime/errors/multibody_errors.h"
 #include "runtime/coupled/split_beam_system.h"
+#include "runtime/coupled/tangent_spectrum.h"
 #include "runtime/errors/invalid_input.h"
-#include "runtime/simulation/run_diagnosis.h"
-#include "runtime/simulation/runs.h"
+#include "runtime/errors/multibody_errors.h"
+#include "runtime/simulation/beam_probes.h"
+#include "runtime/simulation/contact_tallies.h"
+#include "runtime/simulation/model_run.h"
 #include "runtime/simulation/static_start.h"
 
 namespace mbfe::runtime::detail {
 
 namespace {
 
-// Coupled models up to this many coordinates find their static start with
-// the dense difference Jacobian (tested longest); larger ones with the sparse tangent.
-constexpr int kDenseStaticLimit = 600;
-
 // A projected coordinate that moved less than this (relative) moved by round-off.
 constexpr double kProjectionNoise = 1e-12;
+
+// The linearisation behind a diagnosis of a model with constraint contacts
+// is a dense eigenproblem growing as n^3: a diagnosis should take seconds,
+// and at 1,927 coordinates it takes 6 minutes (`mbfe stability` still gives
+// the limits of larger models). Models without them go through their
+// tangents and Arnoldi (seconds at any size).
+constexpr int kMaxDiagnosedCoordinates = 1000;
 
 /// Multiplier columns, stacked like the constraint rows: lambda_<contact>_1/_2
 /// for a pin, lambda_<contact> for a slider_pin.
@@ -46,23 +54,6 @@ std::vector<std::string> multiplier_names(const ir::Model& model) {
   return out;
 }
 
-/// "link1 by +0.0012 rad, beam_w3 by -1e-05 m": the coordinates the projection
-/// onto the contacts moved (beyond round-off), for the notice.
-std::string projection_moves(const AssembledModel& model, const std::vector<std::string>& names,
-                             const Eigen::VectorXd& before, const Eigen::VectorXd& after) {
-  std::ostringstream os;
-  os.precision(6);
-  const int nb = static_cast<int>(model.ir().bodies.size());
-  for (Eigen::Index i = 0; i < before.size(); ++i) {
-    const double moved = after[i] - before[i];
-    if (!(std::abs(moved) > kProjectionNoise * (1.0 + std::abs(before[i])))) continue;
-    if (os.tellp() > 0) os << ", ";
-    os << names[i] << " by " << std::showpos << moved << std::noshowpos << " "
-       << (i < nb ? coordinate_unit(model.ir().bodies[i]) : std::string(names[i].find("_dw") != std::string::npos ? "rad" : "m"));
-  }
-  return os.str();
-}
-
 /// The integrators that step the index-3 form (coupled_implicit_system.h).
 bool second_order_implicit(const IntegratorSpec& spec) {
   if (spec.kind == IntegratorKind::kBackwardEuler || spec.kind == IntegratorKind::kTrapezoid ||
@@ -71,259 +62,300 @@ bool second_order_implicit(const IntegratorSpec& spec) {
   return spec.kind == IntegratorKind::kLinearMultistep && spec.name == "bdf2";
 }
 
+class CoupledRun final : public ModelRun {
+ public:
+  bool adjusted() const override { return adjusted_; }
+  CoupledRun(const AssembledModel& model, const SimulationRequest& request) : model_(model), request_(request) {
+    index3_ = second_order_implicit(request.integrator);
+    // The adjustment exists to widen explicit steps: an implicit integrator runs
+    // the original model unless --adjust on asks otherwise (and is refused).
+    adjusted_ = index3_ && !request.adjust ? false : model.resolve_adjusted(request.adjust);
+    // The index-3 system takes low-rank adjusted beams (the static start uses
+    // it), but Newton contracts slowly on them: the two-span catenary's 1.4 s
+    // took 190 s against 3 s of adjusted RK4. Not offered until that is understood.
+    if (index3_ && adjusted_)
+      throw InvalidRequest("adjust", "on with " + request.integrator.name +
+                                         ": the implicit integrators run the original model of a coupled model (the "
+                                         "adjustment exists for explicit steps); use the original model (adjust off), "
+                                         "or an explicit integrator such as rk4");
+    const bool augmented = request.formulation == CoupledFormulation::kAugmented;
+    dynamics_ = model.make_dynamics(adjusted_);
+    probes_ = resolve_probes(request.probes, model.ir(), model.beams());
+    // Low-rank adjusted beams step in split coordinates when nothing is
+    // partitioned: the same ODE, without passes over their kept modes.
+    // A beam's acceleration is read from the nodal q_c'' (split coordinates
+    // hold s'' in its place).
+    const bool beam_accelerations = std::any_of(probes_.begin(), probes_.end(), [](const BeamProbe& p) {
+      return p.acceleration && p.body < 0;
+    });
+    split_ = !index3_ && !augmented && adjusted_ && !beam_accelerations && dynamics_->split_low_rank_beams();
+    if (split_) {
+      system_ = std::make_unique<SplitBeamSystem>(dynamics_);
+    } else if (index3_) {
+      try {
+        system_ = std::make_unique<CoupledImplicitSystem>(dynamics_);
+      } catch (const std::invalid_argument& e) {
+        throw InvalidInput(model.ir().source_path + ": " + e.what());
+      }
+    } else if (augmented) {
+      system_ = std::make_unique<AugmentedSystem>(dynamics_);
+    } else {
+      system_ = std::make_unique<PartitionedSystem>(dynamics_);
+    }
+    const int n = dynamics_->n();
+    model.initial_coordinates(q0_, qd0_);
+    dynamics_->impose_motion(0.0, q0_, qd0_);
+    if (request.static_start.value_or(model.ir().initial.static_start))
+      coupled_static_start(model.ir(), dynamics_, q0_, qd0_);
+    try {
+      y0_ = state_of(0.0, q0_, qd0_);
+    } catch (const ContactError& e) {
+      throw InvalidInput(model.ir().source_path + ": inconsistent initial state: " + e.what());
+    }
+    names_ = dynamics_->model().coordinate_names();
+    {
+      // An initial state off the constraints is projected onto them: say so.
+      Eigen::VectorXd q(n), qd(n);
+      system_->full_state(0.0, y0_, q, qd);
+      const std::string moved = projection_moves(q0_, q);
+      const std::string moved_rates = projection_moves(qd0_, qd);
+      if (!moved.empty() || !moved_rates.empty()) {
+        std::string text = "the initial state violates the contacts and was projected onto them:";
+        if (!moved.empty()) text += " positions: " + moved + ";";
+        if (!moved_rates.empty()) text += " velocities (per s): " + moved_rates + ";";
+        if (request.strict) throw InvalidInput(model.ir().source_path + ": " + text + " (--strict)");
+        notices_.push_back(text);
+      }
+    }
+    build_layout();
+    // An unstable beam mode drags the contacts along; catch it while the Newton
+    // closure can still follow (a state 1e4 times the largest seen).
+    options_.divergence_factor = 1.0e4;
+    variant_ = std::string(adjusted_ ? "adjusted" : "original") + " damping, " +
+               (index3_ ? "index-3" : augmented ? "augmented" : "partitioned") + " formulation" +
+               (split_ ? ", low-rank beams in split coordinates" : "");
+    if (adjusted_)
+      for (const JoinedStructure& s : model.joined())
+        variant_ += ", joined structure " + joined_name(model.ir(), s.beams) + " (" +
+                    std::to_string(s.adjusted.modes.size() - s.adjusted.adjusted) + " of " + std::to_string(s.dof) +
+                    " modes kept)";
+    // The beam DOFs the probes read: with split beams and probes, a row needs
+    // only those nodal (unless the observer reads every coordinate).
+    rows_at_probes_ = split_ && !probes_.empty() && !request.state_in_rows;
+    for (const BeamProbe& p : probes_)
+      for (int a = 0; a < 4; ++a)
+        if (p.body < 0 && p.weights.free_index[a] >= 0) probe_dofs_.push_back(p.offset + p.weights.free_index[a]);
+    tallies_ = std::make_unique<ContactTallies>(dynamics_->model());
+  }
+
+  OdeSystem& system() override { return *system_; }
+
+  void row(double t, const Eigen::VectorXd& y, std::vector<double>& values, Eigen::VectorXd* q_out,
+           Eigen::VectorXd* qd_out) override {
+    const int nb = dynamics_->nb(), n = dynamics_->n(), m = dynamics_->m();
+    if (rows_at_probes_)
+      system_->full_state_at(t, y, probe_dofs_, q_, qd_);
+    else
+      system_->full_state(t, y, q_, qd_);
+    const ContactReport& contacts = system_->report(t, y);
+    dynamics_->impose_motion(t, q_, qd_);
+    std::size_t k = 0;
+    values[k++] = t;
+    for (const Eigen::VectorXd* x : {&q_, &qd_}) {
+      for (int i = 0; i < nb; ++i) values[k++] = (*x)[i];
+      if (probes_.empty()) {
+        for (int i = nb; i < n; ++i) values[k++] = (*x)[i];
+      } else {
+        for (const BeamProbe& p : probes_)
+          if (!p.acceleration) values[k++] = p.value(x->data() + nb);
+      }
+    }
+    for (int r = 0; r < m; ++r) values[k++] = contacts.lambda[r];
+    values[k++] = contacts.phi_max;
+    const int springs = static_cast<int>(dynamics_->model().slider_springs().size());
+    const int links = static_cast<int>(dynamics_->model().links().size());
+    for (int s = 0; s < springs; ++s) values[k++] = dynamics_->spring_state(s).force;
+    for (int s = 0; s < springs; ++s) values[k++] = dynamics_->spring_state(s).w;
+    for (int l = 0; l < links; ++l) values[k++] = dynamics_->link_state(l).tension;
+    if (!dynamics_->driven().empty()) {
+      dynamics_->drive_reactions(contacts.qdd, reactions_);
+      for (Eigen::Index i = 0; i < reactions_.size(); ++i) values[k++] = reactions_[i];
+    }
+    for (const BeamProbe& p : probes_)
+      if (p.acceleration) values[k++] = p.body >= 0 ? contacts.qdd[p.body] : p.value(contacts.qdd.data() + nb);
+    if (q_out == nullptr) return;
+    if (rows_at_probes_) {
+      q_out->resize(0);
+      qd_out->resize(0);
+    } else {
+      *q_out = q_;
+      *qd_out = qd_;
+    }
+  }
+
+  void full_state(double t, const Eigen::VectorXd& y, Eigen::VectorXd& q, Eigen::VectorXd& qd) override {
+    system_->full_state(t, y, q, qd);
+    dynamics_->impose_motion(t, q, qd);
+  }
+
+  Eigen::VectorXd state_of(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override {
+    const int n = dynamics_->n();
+    if (q.size() != n || qd.size() != n)
+      throw InvalidInput("the state has " + std::to_string(q.size()) + " / " + std::to_string(qd.size()) +
+                         " coordinates, expected " + std::to_string(n) + " ([q_b; q_c])");
+    if (!index3_) return system_->initial_state(t, q, qd);
+    // Projected onto the contacts as the partitioned formulation does, then
+    // handed over in full coordinates.
+    PartitionedSystem projection(dynamics_);
+    Eigen::VectorXd qp(n), qdp(n);
+    projection.full_state(t, projection.initial_state(t, q, qd), qp, qdp);
+    return system_->initial_state(t, qp, qdp);
+  }
+
+  void accepted(double t, const Eigen::VectorXd& y) override {
+    if (tallies_->empty()) return;
+    system_->report(t, y);  // evaluates the springs and links at this state
+    tallies_->count(t, *dynamics_);
+  }
+
+  void fill(SimulationReport& report) const override {
+    report.springs = tallies_->springs();
+    report.links = tallies_->links();
+  }
+
+  std::optional<StepLimit> stable_limit(const IntegratorSpec& integrator) override {
+    // The stable limit of the linearised system at the initial state tells an
+    // instability of the integrator from a fault of the model: the
+    // eigenvalues `mbfe stability` takes (runtime/advisor/model_spectrum.h),
+    // zero modes and round-off growth told from growth of the motion.
+    try {
+      const std::shared_ptr<CoupledDynamics> dynamics = model_.make_dynamics(adjusted_);
+      StateSpectrum spectrum;
+      if (dynamics->model().m() == 0) {
+        CoupledTangents tangents(*dynamics, 0.0, q0_, qd0_);
+        spectrum = tangent_spectrum(tangents);
+      } else {
+        if (dynamics_->n() > kMaxDiagnosedCoordinates) return std::nullopt;
+        spectrum = linearized_spectrum(dynamics, 0.0, q0_, qd0_);
+      }
+      return stable_step(integrator, split_growing(with_zero_modes(spectrum)).limiting.eigenvalues);
+    } catch (const std::exception&) {
+      return std::nullopt;  // no limit known: the message says only what happened
+    }
+  }
+
+  void set_beam_load(const std::string& beam, double s, std::function<double(double)> value) override {
+    const auto& beams = model_.ir().beams;
+    int b = -1;
+    for (std::size_t i = 0; i < beams.size(); ++i)
+      if (beams[i].name == beam) b = static_cast<int>(i);
+    if (b < 0) throw InvalidInput("no beam named '" + beam + "'");
+    try {
+      dynamics_->set_applied_load(b, s, std::move(value));
+    } catch (const std::invalid_argument& e) {
+      throw InvalidInput(e.what());
+    }
+  }
+
+ private:
+  /// "link1 by +0.0012 rad, beam_w3 by -1e-05 m": the coordinates the
+  /// projection onto the contacts moved (beyond round-off), for the notice.
+  std::string projection_moves(const Eigen::VectorXd& before, const Eigen::VectorXd& after) const {
+    std::ostringstream os;
+    os.precision(6);
+    const int nb = static_cast<int>(model_.ir().bodies.size());
+    for (Eigen::Index i = 0; i < before.size(); ++i) {
+      const double moved = after[i] - before[i];
+      if (!(std::abs(moved) > kProjectionNoise * (1.0 + std::abs(before[i])))) continue;
+      if (os.tellp() > 0) os << ", ";
+      const std::string& name = names_.empty() ? dynamics_->model().coordinate_names()[i] : names_[i];
+      os << name << " by " << std::showpos << moved << std::noshowpos;
+      const std::string unit = i < nb ? coordinate_unit(model_.ir().bodies[i])
+                                      : beam_coordinate_unit(name.find("_dw") != std::string::npos);
+      if (unit != "1") os << " " << unit;
+    }
+    return os.str();
+  }
+
+  void build_layout() {
+    const int nb = dynamics_->nb(), n = dynamics_->n();
+    std::vector<std::string> positions, units, rate_units;
+    for (int i = 0; i < nb; ++i) {
+      positions.push_back(names_[i]);
+      units.push_back(coordinate_unit(model_.ir().bodies[i]));
+      rate_units.push_back(rate_unit(model_.ir().bodies[i]));
+    }
+    if (probes_.empty()) {
+      for (int i = nb; i < n; ++i) {
+        const bool slope = names_[i].find("_dw") != std::string::npos;
+        positions.push_back(names_[i]);
+        units.push_back(beam_coordinate_unit(slope));
+        rate_units.push_back(beam_rate_unit(slope));
+      }
+    } else {
+      for (const BeamProbe& p : probes_) {
+        if (p.acceleration) continue;  // at the end of the row
+        positions.push_back(p.label);
+        units.push_back(beam_coordinate_unit(false));
+        rate_units.push_back(beam_rate_unit(false));
+      }
+    }
+    layout_.columns.push_back("t");
+    layout_.units.push_back("s");
+    layout_.columns.insert(layout_.columns.end(), positions.begin(), positions.end());
+    layout_.units.insert(layout_.units.end(), units.begin(), units.end());
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      layout_.columns.push_back(positions[i] + "_dot");
+      layout_.units.push_back(rate_units[i]);
+    }
+    for (const std::string& l : multiplier_names(model_.ir())) {
+      layout_.columns.push_back(l);
+      layout_.units.push_back("N");
+    }
+    layout_.columns.push_back("phi_abs");
+    layout_.units.push_back("m");
+    const CoupledModel& cm = dynamics_->model();
+    for (const SliderSpringForce* s : cm.slider_springs()) {
+      layout_.columns.push_back("force_" + s->name());
+      layout_.units.push_back("N");
+    }
+    for (const SliderSpringForce* s : cm.slider_springs()) {
+      layout_.columns.push_back("deflection_" + s->name());
+      layout_.units.push_back("m");
+    }
+    for (const LinkForce* l : cm.links()) {
+      layout_.columns.push_back("tension_" + l->name());
+      layout_.units.push_back("N");
+    }
+    for (int d : dynamics_->driven()) {
+      layout_.columns.push_back(model_.ir().bodies[d].name + "_drive");
+      layout_.units.push_back(model_.ir().bodies[d].joint.type == ir::JointType::kRevolute ? "N m" : "N");
+    }
+    // Acceleration probes last: a beam's (m/s^2) or a body coordinate's.
+    for (const BeamProbe& p : probes_) {
+      if (!p.acceleration) continue;
+      layout_.columns.push_back(p.label);
+      const bool angle = p.body >= 0 && model_.ir().bodies[p.body].joint.type == ir::JointType::kRevolute;
+      layout_.units.push_back(angle ? "rad/s^2" : "m/s^2");
+    }
+  }
+
+  const AssembledModel& model_;
+  SimulationRequest request_;
+  bool index3_ = false, adjusted_ = false, split_ = false, rows_at_probes_ = false;
+  std::shared_ptr<CoupledDynamics> dynamics_;
+  std::unique_ptr<CoupledSystem> system_;
+  std::vector<BeamProbe> probes_;
+  std::vector<int> probe_dofs_;
+  std::vector<std::string> names_;
+  Eigen::VectorXd q0_, qd0_, q_, qd_, reactions_;
+  std::unique_ptr<ContactTallies> tallies_;
+};
+
 }  // namespace
 
-SimulationReport run_coupled(const AssembledModel& model, const SimulationRequest& request,
-                             SimulationObserver& observer) {
-  const bool index3 = second_order_implicit(request.integrator);
-  // The adjustment exists to widen explicit steps: an implicit integrator runs
-  // the original model unless --adjust on asks otherwise (and is refused).
-  const bool adjusted = index3 && !request.adjust ? false : model.resolve_adjusted(request.adjust);
-  // The index-3 system takes low-rank adjusted beams (the static start uses
-  // it), but each refresh of its matrix costs one sparse solve per kept mode
-  // and Newton contracts slowly on them: the two-span catenary's 1.4 s took
-  // 190 s against 3 s of adjusted RK4. Not offered until that is understood.
-  if (index3 && adjusted)
-    throw InvalidInput(model.ir().source_path + ": --adjust on with " + request.integrator.name +
-                       ": the implicit integrators run the original model of a coupled model (the adjustment "
-                       "exists for explicit steps); use --adjust off, or an explicit integrator such as rk4");
-  const bool augmented = request.formulation == CoupledFormulation::kAugmented;
-  const std::shared_ptr<CoupledDynamics> dynamics = model.make_dynamics(adjusted);
-  const int nb = dynamics->nb();
-  const int n = dynamics->n();
-  const int m = dynamics->m();
-  const std::vector<BeamProbe> probes = resolve_probes(request.probes, model.ir(), model.beams());
-
-  std::unique_ptr<CoupledSystem> system;
-  // Low-rank adjusted beams step in split coordinates when nothing is
-  // partitioned: the same ODE, without passes over their kept modes.
-  const bool split = !index3 && !augmented && adjusted && dynamics->split_low_rank_beams();
-  if (split) {
-    system = std::make_unique<SplitBeamSystem>(dynamics);
-  } else if (index3) {
-    try {
-      system = std::make_unique<CoupledImplicitSystem>(dynamics);
-    } catch (const std::invalid_argument& e) {
-      throw InvalidInput(model.ir().source_path + ": " + e.what());
-    }
-  } else if (augmented)
-    system = std::make_unique<AugmentedSystem>(dynamics);
-  else
-    system = std::make_unique<PartitionedSystem>(dynamics);
-  Eigen::VectorXd q0, qd0, y0;
-  model.initial_coordinates(q0, qd0);
-  dynamics->impose_motion(0.0, q0, qd0);
-  if (request.static_start.value_or(model.ir().initial.static_start)) {
-    // The dense difference Jacobian costs n evaluations and an n^3 solve:
-    // large models take the sparse tangent.
-    if (n <= kDenseStaticLimit || !coupled_static_state_sparse(model.ir(), dynamics, q0, qd0))
-      coupled_static_state(model.ir(), *dynamics, q0, qd0);
-  }
-  try {
-    if (index3) {
-      // Projected onto the contacts as the partitioned formulation does, then
-      // handed over in full coordinates.
-      PartitionedSystem projection(dynamics);
-      Eigen::VectorXd q(n), qd(n);
-      projection.full_state(0.0, projection.initial_state(0.0, q0, qd0), q, qd);
-      y0 = system->initial_state(0.0, q, qd);
-    } else {
-      y0 = system->initial_state(0.0, q0, qd0);
-    }
-  } catch (const ContactError& e) {
-    throw InvalidInput(model.ir().source_path + ": inconsistent initial state: " + e.what());
-  }
-  {
-    // An initial state off the constraints is projected onto them: say so.
-    Eigen::VectorXd q(n), qd(n);
-    system->full_state(0.0, y0, q, qd);
-    const std::vector<std::string> names = dynamics->model().coordinate_names();
-    const std::string moved = projection_moves(model, names, q0, q);
-    const std::string moved_rates = projection_moves(model, names, qd0, qd);
-    if (!moved.empty() || !moved_rates.empty()) {
-      std::string text = "the initial state violates the contacts and was projected onto them:";
-      if (!moved.empty()) text += " positions: " + moved + ";";
-      if (!moved_rates.empty()) text += " velocities (per s): " + moved_rates + ";";
-      if (request.strict) throw InvalidInput(model.ir().source_path + ": " + text + " (--strict)");
-      observer.notice(text);
-    }
-  }
-
-  OutputLayout layout;
-  const std::vector<std::string> names = dynamics->model().coordinate_names();
-  std::vector<std::string> positions, units;
-  for (int i = 0; i < nb; ++i) {
-    positions.push_back(names[i]);
-    units.push_back(coordinate_unit(model.ir().bodies[i]));
-  }
-  if (probes.empty()) {
-    for (int i = nb; i < n; ++i) {
-      positions.push_back(names[i]);
-      units.push_back(names[i].find("_dw") != std::string::npos ? "1" : "m");
-    }
-  } else {
-    for (const BeamProbe& p : probes) {
-      positions.push_back(p.label);
-      units.push_back("m");
-    }
-  }
-  layout.columns.push_back("t");
-  layout.units.push_back("s");
-  layout.columns.insert(layout.columns.end(), positions.begin(), positions.end());
-  layout.units.insert(layout.units.end(), units.begin(), units.end());
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    layout.columns.push_back(positions[i] + "_dot");
-    layout.units.push_back(units[i] == "1" ? "1/s" : units[i] + "/s");
-  }
-  for (const std::string& l : multiplier_names(model.ir())) {
-    layout.columns.push_back(l);
-    layout.units.push_back("N");
-  }
-  layout.columns.push_back("phi_abs");
-  layout.units.push_back("m");
-  const std::vector<const SliderSpringForce*>& springs = dynamics->model().slider_springs();
-  const int num_springs = static_cast<int>(springs.size());
-  for (int k = 0; k < num_springs; ++k) {
-    layout.columns.push_back("force_" + springs[k]->name());
-    layout.units.push_back("N");
-  }
-  for (int k = 0; k < num_springs; ++k) {
-    layout.columns.push_back("deflection_" + springs[k]->name());
-    layout.units.push_back("m");
-  }
-  const std::vector<const LinkForce*>& links = dynamics->model().links();
-  const int num_links = static_cast<int>(links.size());
-  for (int k = 0; k < num_links; ++k) {
-    layout.columns.push_back("tension_" + links[k]->name());
-    layout.units.push_back("N");
-  }
-  const std::vector<int>& driven = dynamics->driven();
-  for (int d : driven) {
-    layout.columns.push_back(model.ir().bodies[d].name + "_drive");
-    layout.units.push_back(model.ir().bodies[d].joint.type == ir::JointType::kRevolute ? "N m" : "N");
-  }
-  observer.begin(layout);
-
-  std::vector<double> values(layout.columns.size());
-  Eigen::VectorXd q(n), qd(n), reactions;
-  SimulationOptions options = driver_options(request);
-  // Lift-offs and time off contact, on every accepted step.
-  std::vector<SpringContactTally> tally(num_springs);
-  for (int k = 0; k < num_springs; ++k) tally[k].name = springs[k]->name();
-  std::vector<LinkSlackTally> link_tally;
-  for (int k = 0; k < num_links; ++k)
-    if (links[k]->can_go_slack()) link_tally.push_back({links[k]->name(), 0, 0.0, false, false});
-  double t_prev = 0.0;
-  if (num_springs > 0 || !link_tally.empty()) {
-    options.on_step = [&](double t, const Eigen::VectorXd& y) {
-      system->report(t, y);  // evaluates the springs and links at this state
-      for (int k = 0, i = 0; k < num_links; ++k) {
-        if (!links[k]->can_go_slack()) continue;
-        LinkSlackTally& c = link_tally[static_cast<std::size_t>(i++)];
-        const bool slack = dynamics->link_state(k).slack;
-        if (slack) c.time_slack += t - t_prev;
-        if (slack && !c.slack && c.seen) ++c.slackenings;
-        c.slack = slack;
-        c.seen = true;
-      }
-      for (int k = 0; k < num_springs; ++k) {
-        const SpringContactState& st = dynamics->spring_state(k);
-        SpringContactTally& c = tally[k];
-        const bool touching = st.delta > 0.0;  // in contact, pressing or not
-        if (st.on_beam && !touching) c.time_off += t - t_prev;
-        if (c.seen && c.in_contact && !touching && st.on_beam) ++c.lift_offs;
-        c.in_contact = touching;
-        c.seen = c.seen || st.on_beam;
-      }
-      t_prev = t;
-    };
-  }
-  // An unstable beam mode drags the contacts along; catch it while the Newton
-  // closure can still follow (a state 1e4 times the largest seen).
-  options.divergence_factor = 1.0e4;
-  SimulationReport report;
-  report.variant = std::string(adjusted ? "adjusted" : "original") + " damping, " +
-                   (index3 ? "index-3" : augmented ? "augmented" : "partitioned") + " formulation" +
-                   (split ? ", low-rank beams in split coordinates" : "");
-  // The beam DOFs the probes read: with split beams and probes, a row needs
-  // only those nodal (unless the observer reads every coordinate).
-  const bool rows_at_probes = split && !probes.empty() && !request.state_in_rows;
-  std::vector<int> probe_dofs;
-  for (const BeamProbe& p : probes)
-    for (int a = 0; a < 4; ++a)
-      if (p.weights.free_index[a] >= 0) probe_dofs.push_back(p.offset + p.weights.free_index[a]);
-  const Eigen::VectorXd no_coordinates;
-  if (adjusted)
-    for (const JoinedStructure& s : model.joined())
-      report.variant += ", joined structure " + joined_name(model.ir(), s.beams) + " (" +
-                        std::to_string(s.adjusted.modes.size() - s.adjusted.adjusted) + " of " +
-                        std::to_string(s.dof) + " modes kept)";
-  std::string row_fault;
-  try {
-    report.run = run_simulation(*system, request.integrator, y0, options, [&](double t, const Eigen::VectorXd& y) {
-      if (!row_fault.empty()) return;
-      ContactReport contacts;
-      try {
-        if (rows_at_probes)
-          system->full_state_at(t, y, probe_dofs, q, qd);
-        else
-          system->full_state(t, y, q, qd);
-        contacts = system->report(t, y);
-      } catch (const std::runtime_error& e) {
-        row_fault = e.what();  // the step after this one fails the same way
-        return;
-      }
-      dynamics->impose_motion(t, q, qd);
-      std::size_t k = 0;
-      values[k++] = t;
-      for (const Eigen::VectorXd* x : {&q, &qd}) {
-        for (int i = 0; i < nb; ++i) values[k++] = (*x)[i];
-        if (probes.empty()) {
-          for (int i = nb; i < n; ++i) values[k++] = (*x)[i];
-        } else {
-          for (const BeamProbe& p : probes) values[k++] = p.value(x->data() + nb);
-        }
-      }
-      for (int r = 0; r < m; ++r) values[k++] = contacts.lambda[r];
-      values[k++] = contacts.phi_max;
-      for (int s = 0; s < num_springs; ++s) values[k++] = dynamics->spring_state(s).force;
-      for (int s = 0; s < num_springs; ++s) values[k++] = dynamics->spring_state(s).w;
-      for (int l = 0; l < num_links; ++l) values[k++] = dynamics->link_state(l).tension;
-      if (!driven.empty()) {
-        dynamics->drive_reactions(contacts.qdd, reactions);
-        for (Eigen::Index i = 0; i < reactions.size(); ++i) values[k++] = reactions[i];
-      }
-      if (rows_at_probes)
-        observer.row(OutputRow{t, values, no_coordinates, no_coordinates});
-      else
-        observer.row(OutputRow{t, values, q, qd});
-    });
-  } catch (const std::invalid_argument& e) {
-    throw InvalidInput(e.what());
-  }
-  report.springs = tally;
-  report.links = link_tally;
-  if (report.run.status == SimulationStatus::kCompleted && row_fault.empty()) return report;
-  // The stable limit of the linearised system at the initial state tells an
-  // instability of the integrator from a fault of the model.
-  std::optional<StepLimit> limit;
-  // The linearisation is a dense eigenproblem growing as n^3: a diagnosis
-  // should take seconds, and at 1,927 coordinates it takes 6 minutes
-  // (`mbfe stability` still gives the limits of models up to
-  // kMaxLinearizedCoordinates).
-  constexpr int kMaxDiagnosedCoordinates = 1000;
-  if (report.run.status != SimulationStatus::kInterrupted && n <= kMaxDiagnosedCoordinates) {
-    try {
-      // The eigenvalues `mbfe stability` takes: a real part at round-off of
-      // the modulus is zero (an undamped mode), not growth.
-      const StateSpectrum spectrum = linearized_spectrum(model.make_dynamics(adjusted), 0.0, q0, qd0);
-      limit = stable_step(request.integrator, split_growing(spectrum).limiting.eigenvalues);
-    } catch (const std::exception&) {
-      // No limit known: the message says only what happened.
-    }
-  }
-  report.message = diagnose_run(report.run, limit, row_fault);
-  return report;
+std::unique_ptr<ModelRun> make_coupled_run(const AssembledModel& model, const SimulationRequest& request) {
+  return std::make_unique<CoupledRun>(model, request);
 }
 
 }  // namespace mbfe::runtime::detail

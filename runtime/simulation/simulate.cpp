@@ -1,54 +1,48 @@
 #include "runtime/simulation/simulate.h"
 
-#include <cmath>
+#include <algorithm>
+#include <stdexcept>
 
-#include "runtime/errors/invalid_input.h"
-#include "runtime/simulation/runs.h"
+#include "runtime/simulation/simulator.h"
 
 namespace mbfe::runtime {
 
-namespace detail {
-
-SimulationOptions driver_options(const SimulationRequest& request) {
-  SimulationOptions options;
-  options.step = request.step;
-  options.t_end = request.t_end;
-  options.every = request.every;
-  options.quiet = request.quiet;
-  options.handle_sigint = request.handle_sigint;
-  return options;
-}
-
-const char* coordinate_unit(const ir::Body& body) {
-  return body.joint.type == ir::JointType::kRevolute ? "rad" : "m";
-}
-
-const char* rate_unit(const ir::Body& body) {
-  return body.joint.type == ir::JointType::kRevolute ? "rad/s" : "m/s";
-}
-
-}  // namespace detail
-
 SimulationReport simulate(const AssembledModel& model, const SimulationRequest& request,
-                          SimulationObserver& observer) {
-  if (!(request.step > 0.0) || !std::isfinite(request.step)) throw InvalidInput("--step must be > 0");
-  if (!(request.t_end > 0.0) || !std::isfinite(request.t_end)) throw InvalidInput("--t-end must be > 0");
-  if (request.every < 0) throw InvalidInput("--every must be a positive integer");
-  const std::string& name = model.ir().name;
-  switch (model.kind()) {
-    case ModelKind::kRigid:
-      if (request.integrator.kind == IntegratorKind::kGeneralizedAlpha)
-        throw InvalidInput("generalized_alpha needs a linear second-order (beam) model; for rigid models use "
-                           "rk4, trapezoid, backward_euler, ...");
-      if (request.adjust || !request.probes.empty())
-        throw InvalidInput("--adjust and --probe apply to beam models only ('" + name + "' has no beams)");
-      return detail::run_rigid(model, request, observer);
-    case ModelKind::kBeams:
-      return detail::run_beams(model, request, observer);
-    case ModelKind::kCoupled:
-      return detail::run_coupled(model, request, observer);
+                          SimulationObserver& observer, const StepMonitor& keep_going) {
+  Simulator sim(model, request);
+  for (const std::string& text : sim.notices()) observer.notice(text);
+  observer.begin(sim.layout());
+  // Every `every`-th step, or automatically at most about 10,000 rows.
+  constexpr std::int64_t kMaxRows = 10000;
+  const std::int64_t total = sim.total_steps();
+  const std::int64_t every = request.every > 0 ? request.every : std::max<std::int64_t>(1, (total + kMaxRows - 1) / kMaxRows);
+  // A fault met writing a row: the step after it fails the same way; no
+  // more rows, and the report names the fault.
+  bool rows = true;
+  std::int64_t emitted = 0;
+  const auto emit = [&]() {
+    if (!rows) return;
+    try {
+      observer.row(sim.row());
+      ++emitted;
+    } catch (const std::runtime_error& e) {
+      sim.note_row_fault(e.what());
+      rows = false;
+    }
+  };
+  emit();
+  bool last_emitted = true;
+  while (!sim.finished()) {
+    const std::int64_t before = sim.steps();
+    sim.advance_steps(1, keep_going);
+    if (sim.steps() == before) break;  // stopped
+    last_emitted = sim.steps() % every == 0 || sim.steps() == total;
+    if (last_emitted) emit();
   }
-  throw InvalidInput("unknown kind of model");
+  if (!last_emitted) emit();
+  SimulationReport report = sim.report();
+  report.run.rows = emitted;
+  return report;
 }
 
 }  // namespace mbfe::runtime

@@ -260,4 +260,12 @@ bool coupled_static_state_sparse(const ir::Model& model, const std::shared_ptr<C
                            std::to_string(kMaxIterations) + " iterations; start from `initial:` as written");
 }
 
+void coupled_static_start(const ir::Model& model, const std::shared_ptr<CoupledDynamics>& dyn, Eigen::VectorXd& q,
+                          Eigen::VectorXd& qd) {
+  // The dense difference Jacobian costs n evaluations and an n^3 solve:
+  // large models take the sparse tangent.
+  if (dyn->n() <= kDenseStaticCoordinates || !coupled_static_state_sparse(model, dyn, q, qd))
+    coupled_static_state(model, *dyn, q, qd);
+}
+
 }  // namespace mbfe::runtime

@@ -55,6 +55,17 @@ void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::V
 bool coupled_static_state_sparse(const ir::Model& model, const std::shared_ptr<CoupledDynamics>& dyn,
                                  Eigen::VectorXd& q, Eigen::VectorXd& qd);
 
+/// Coupled models up to this many coordinates find their static start with
+/// the dense difference Jacobian (tested longest); larger ones with the
+/// sparse tangent.
+inline constexpr int kDenseStaticCoordinates = 600;
+
+/// coupled_static_state for a model of up to kDenseStaticCoordinates
+/// coordinates or one without the beams' sparse matrices,
+/// coupled_static_state_sparse otherwise: what a run and the advisor use.
+void coupled_static_start(const ir::Model& model, const std::shared_ptr<CoupledDynamics>& dyn, Eigen::VectorXd& q,
+                          Eigen::VectorXd& qd);
+
 /// A rigid model's static start on y = [q; q'] (q the starting guess).
 /// @throws ir::ModelError at `model.initial.loc` when there is none.
 void rigid_static_state(const ir::Model& model, RigidSystem& system, Eigen::VectorXd& y);

@@ -19,10 +19,10 @@ LowRankStructure::Parts adjusted_parts(const std::string& name, std::vector<LowR
   parts.K = K;
   parts.P = P;
   parts.base = LowRankStructure::Base::kMass;
-  int kept = count;
-  double k_star = 0.0, c_star = 0.0;
-  if (adjusted.uniform) {
-    kept = 0;
+  // The kept modes: the leading ones the policy does not change (a partial
+  // basis must end with a changed one: every mode beyond it is changed too).
+  const auto leading_kept = [&]() {
+    int kept = 0;
     while (kept < count && adjusted.change[kept] != ModeChange::kAdjusted) ++kept;
     for (int j = kept; j < count; ++j)
       if (adjusted.change[j] != ModeChange::kAdjusted)
@@ -31,6 +31,31 @@ LowRankStructure::Parts adjusted_parts(const std::string& name, std::vector<LowR
     if (!basis.complete && kept == count)
       throw std::invalid_argument("'" + name + "': the partial modal basis (" + std::to_string(count) +
                                   " modes) ends below the adjustment threshold; compute more modes");
+    return kept;
+  };
+  if (adjusted.policy == ir::AdjustmentPolicy::kMass && adjusted.adjusted > 0) {
+    // Policy mass: capped modes keep k_j and get modal mass k_j / k* and
+    // damping c* k_j / k* (docs/damping-adjustment.md, "Policy mass"), so
+    //   M_adj = K / k* + U diag(1 - k_L / k*) U^T,
+    //   C_adj = (c* / k*) K + U diag(c_L - c* k_L / k*) U^T,   K_adj = K.
+    const int kept = leading_kept();
+    const double k_star = adjusted.k_star, c_star = adjusted.c_star;
+    parts.base = LowRankStructure::Base::kStiffness;
+    parts.phi = basis.phi.leftCols(kept);
+    parts.k = basis.omega.head(kept).array().square().matrix();
+    parts.mass = {1.0 / k_star, Eigen::VectorXd(kept)};
+    parts.damping = {c_star / k_star, Eigen::VectorXd(kept)};
+    parts.stiffness = {1.0, Eigen::VectorXd::Zero(kept)};
+    for (int j = 0; j < kept; ++j) {
+      parts.mass.d[j] = 1.0 - adjusted.modes[j].k / k_star;
+      parts.damping.d[j] = adjusted.modes[j].c - c_star * adjusted.modes[j].k / k_star;
+    }
+    return parts;
+  }
+  int kept = count;
+  double k_star = 0.0, c_star = 0.0;
+  if (adjusted.uniform) {
+    kept = leading_kept();
     if (adjusted.adjusted > 0 || !basis.complete) {
       k_star = adjusted.k_star;
       c_star = adjusted.c_star;

@@ -16,8 +16,10 @@ namespace mbfe::runtime {
 /// The adjusted operators over modes `basis` of (M, K) with their adjusted
 /// dynamics `adjusted` and the constant load P, over the coordinates `ranges`:
 ///  - a uniform adjustment (policy cap): the low-rank form over the kept
-///    modes, the leading ones that are not kAdjusted; a partial basis must end
-///    with an adjusted mode (the tail beyond it is all adjusted);
+///    modes, the leading ones that are not kAdjusted, on B = M; a partial
+///    basis must end with an adjusted mode (the tail beyond it is all adjusted);
+///  - the policy mass: the same kept modes, on B = K (the capped modes'
+///    modal mass raised, their stiffness kept);
 ///  - otherwise eq (27) over every mode (a complete basis).
 /// @throws std::invalid_argument naming `name` when the basis does not allow it.
 LowRankStructure::Parts adjusted_parts(const std::string& name, std::vector<LowRankStructure::Range> ranges,

@@ -3,6 +3,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "runtime/linalg/sparse_ldlt_solve.h"
+
 namespace mbfe::runtime {
 
 namespace {
@@ -156,7 +158,7 @@ void LowRankStructure::free_acceleration(const double* qc, const double* vc, con
     loaded = !ws.r.isZero(0.0);
   }
   if (loaded) {
-    ws.base_solve = factor_->solve(ws.r);
+    solve_ldlt(*factor_, ws.r, ws.base_solve, ws.ldlt);
     ws.a += inv_mu * ws.base_solve;
   }
   if (rank() == 0) {
@@ -209,10 +211,14 @@ void LowRankStructure::apply(const Term& term, const Eigen::VectorXd& x, Eigen::
   }
 }
 
-void LowRankStructure::solve_base(const Eigen::VectorXd& r, Eigen::VectorXd& x) const { x = factor_->solve(r); }
+void LowRankStructure::solve_base(const Eigen::VectorXd& r, Eigen::VectorXd& x, Workspace& ws) const {
+  x.resize(r.size());
+  solve_ldlt(*factor_, r, x, ws.ldlt);
+}
 
 void LowRankStructure::solve_mass(const Eigen::VectorXd& r, Eigen::VectorXd& x, Workspace& ws) const {
-  x = factor_->solve(r);
+  x.resize(r.size());
+  solve_ldlt(*factor_, r, x, ws.ldlt);
   x /= mass_.mu;
   if (rank() == 0 || !uses_g_) return;
   if (base_ == Base::kMass) {

@@ -105,6 +105,7 @@ class LowRankStructure {
   /// make_workspace, never reallocated by them.
   struct Workspace {
     Eigen::VectorXd x, v, r, a, bx, bv, base_solve, modal, modal_g;
+    Eigen::VectorXd ldlt;  // the sparse solves' workspace
     Eigen::Matrix<double, Eigen::Dynamic, 4> three, projected3;
   };
   Workspace make_workspace() const;
@@ -129,7 +130,7 @@ class LowRankStructure {
   /// x = M_adj^-1 r over the stacked coordinates (r may alias nothing in ws).
   void solve_mass(const Eigen::VectorXd& r, Eigen::VectorXd& x, Workspace& ws) const;
   /// x = B^-1 r over the stacked coordinates.
-  void solve_base(const Eigen::VectorXd& r, Eigen::VectorXd& x) const;
+  void solve_base(const Eigen::VectorXd& r, Eigen::VectorXd& x, Workspace& ws) const;
 
   /// c_a M_adj + c_v C_adj + c_q K_adj = mu B + U diag(d) U^T: its mu and d.
   Term combination(double c_a, double c_v, double c_q) const;

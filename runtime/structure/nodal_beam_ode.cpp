@@ -62,10 +62,10 @@ void NodalBeamOde::solve_combination(double a, double b, double c, const Eigen::
     // (mu B + U diag(d) U^T)^-1 = B^-1 / mu + Phi_L diag(1/(mu b + d) - 1/(mu b)) Phi_L^T.
     const LowRankStructure& s = *adjusted_;
     const LowRankStructure::Term t = s.combination(a, b, c);
-    const Eigen::ArrayXd base = t.mu * s.base_modal().array();
+    const Eigen::ArrayXd base = t.mu * s.base_modal().array();  // implicit steps only
     if (!(t.mu > 0.0) || !((base + t.d.array()).abs() > 0.0).all())
       throw std::runtime_error("implicit step: a M + b C + c K is singular");
-    s.solve_base(r, x);
+    s.solve_base(r, x, ws_);
     x /= t.mu;
     if (s.rank() > 0) {
       ws_.modal.noalias() = s.phi().transpose() * r;

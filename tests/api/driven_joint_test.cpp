@@ -71,7 +71,6 @@ TEST(DrivenJoint, CartPendulumFollowsTheMotionWithTheHandDerivedDriveForce) {
   request.step = kStep;
   request.t_end = kEnd;
   request.every = 1;
-  request.handle_sigint = false;
   Rows rows;
   const runtime::SimulationReport report = model.simulate(request, rows);
   ASSERT_TRUE(report.message.empty()) << report.message;

@@ -73,8 +73,6 @@ runtime::SimulationRequest request(const std::string& integrator, double step, d
   r.integrator = runtime::parse_integrator(integrator);
   r.step = step;
   r.t_end = t_end;
-  r.handle_sigint = false;
-  r.quiet = true;
   r.adjust = false;
   return r;
 }

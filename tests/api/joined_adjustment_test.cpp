@@ -213,7 +213,7 @@ TEST(JoinedAdjustment, AccelerationsMatchTheDenseJoinedStructure) {
   // Each wire capped on its own is another operator: the check tells them apart.
   const Model joined = Model::parse(head_off_the_wires(joined_wires()), "joined.yaml");
   const Model per_wire = Model::parse(
-      head_off_the_wires(test::with_wire_adjustment("{omega_limit: 2000.0, margin: 0.1}")), "per_wire.yaml");
+      head_off_the_wires(test::with_wire_adjustment("{omega_limit: 2000.0, margin: 0.1, policy: cap}")), "per_wire.yaml");
   Eigen::VectorXd q, qd, qdd, lambda;
   random_state(joined, q, qd);
   auto dyn = per_wire.assembled().make_dynamics(true);
@@ -339,7 +339,6 @@ std::vector<double> contact_force(const std::string& text, const char* integrato
   r.t_end = 0.9;
   r.every = every;
   r.adjust = adjusted;
-  r.handle_sigint = false;
   test::RecordedRows rows;
   const runtime::SimulationReport report = model.simulate(r, rows);
   EXPECT_TRUE(report.message.empty()) << report.message;
@@ -409,7 +408,7 @@ TEST(JoinedAdjustment, CostsAccuracyOnACatenaryWhereEachWireAdjustedAloneDoesNot
   // droppers leave the softened structure nearly without stiffness (its
   // slack_stiffness_ratio is 0.99) and stay slack twice as long.
   const std::string joined = test::with_wire_adjustment("{omega_limit: 1500.0, margin: 0.1, scope: joined}");
-  const std::string per_wire = test::with_wire_adjustment("{omega_limit: 1500.0, margin: 0.1}");
+  const std::string per_wire = test::with_wire_adjustment("{omega_limit: 1500.0, margin: 0.1, policy: cap}");
   const std::vector<double> reference = contact_force(joined, "generalized_alpha", 2.5e-4, 5, false);
   const double rms_per_wire = rms_difference(contact_force(per_wire, "rk4", 1.25e-3, 1, true), reference);
   const double rms_joined = rms_difference(contact_force(joined, "rk4", 1.25e-3, 1, true), reference);

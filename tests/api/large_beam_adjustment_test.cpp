@@ -3,7 +3,8 @@
 // (docs/beams-and-modal.md, "Every mode below a bound"). The two-span
 // catenary's wires are loaded twice, once within the dense limit (every mode,
 // dense) and once with the limit below their size (sliced); the adjusted
-// model must be the same.
+// model must be the same, with the policy cap and with the policy mass
+// (which changes the same modes).
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -11,28 +12,33 @@
 #include <string>
 
 #include "api/mbfe.h"
+#include "runtime/simulation/assembled_model.h"
 #include "tests/support/two_span_catenary.h"
 
 namespace mbfe {
 namespace {
 
 // A cap that keeps about half of each wire's modes.
-const std::string kCapBlock = "{omega_limit: 800.0, margin: 0.1}";
+std::string adjustment_block(const std::string& policy) {
+  return "{omega_limit: 800.0, margin: 0.1, policy: " + policy + "}";
+}
 constexpr int kBelowTheWires = 40;  // DOF; each wire has about 80
 
 // 10 modes a Lanczos run: several runs per wire, as in a large one.
 constexpr int kSmallRuns = 10;
 
-Model load(int dense_limit, const std::string& cap = kCapBlock) {
+class LargeBeamAdjustment : public testing::TestWithParam<std::string> {};
+
+Model load(int dense_limit, const std::string& cap) {
   LoadOptions options;
   options.beams.dense_limit = dense_limit;
   options.beams.slice_modes = kSmallRuns;
   return Model::parse(test::with_wire_adjustment(cap), "large_beam.yaml", options);
 }
 
-TEST(LargeBeamAdjustment, SlicedWiresKeepTheDenseKeptModes) {
-  const Model dense = load(runtime::BeamAnalysisOptions{}.dense_limit);
-  const Model sliced = load(kBelowTheWires);
+TEST_P(LargeBeamAdjustment, SlicedWiresKeepTheDenseKeptModes) {
+  const Model dense = load(runtime::BeamAnalysisOptions{}.dense_limit, adjustment_block(GetParam()));
+  const Model sliced = load(kBelowTheWires, adjustment_block(GetParam()));
   ASSERT_EQ(dense.assembled().beams().beams.size(), 2u);
   for (std::size_t k = 0; k < 2; ++k) {
     const runtime::BeamPart& d = dense.assembled().beams().beams[k];
@@ -51,9 +57,9 @@ TEST(LargeBeamAdjustment, SlicedWiresKeepTheDenseKeptModes) {
   }
 }
 
-TEST(LargeBeamAdjustment, SlicedWiresGiveTheDenseAccelerations) {
-  const Model dense = load(runtime::BeamAnalysisOptions{}.dense_limit);
-  const Model sliced = load(kBelowTheWires);
+TEST_P(LargeBeamAdjustment, SlicedWiresGiveTheDenseAccelerations) {
+  const Model dense = load(runtime::BeamAnalysisOptions{}.dense_limit, adjustment_block(GetParam()));
+  const Model sliced = load(kBelowTheWires, adjustment_block(GetParam()));
   auto dyn_dense = dense.assembled().make_dynamics(true);
   auto dyn_sliced = sliced.assembled().make_dynamics(true);
   Eigen::VectorXd q, qd;
@@ -83,10 +89,10 @@ TEST(LargeBeamAdjustment, SlicedWiresGiveTheDenseAccelerations) {
   EXPECT_GT((a_original - a_dense).cwiseAbs().maxCoeff(), 1e-3 * scale);
 }
 
-TEST(LargeBeamAdjustment, ACapAboveNearlyEveryModeLeavesTheOriginalModelRunning) {
+TEST_P(LargeBeamAdjustment, ACapAboveNearlyEveryModeLeavesTheOriginalModelRunning) {
   // Slicing is for the modes below a cap that keeps some; a cap above nearly
   // every mode is refused at its block when the adjusted model is asked for.
-  const Model model = load(kBelowTheWires, "{omega_limit: 1.0e6, margin: 0.1}");
+  const Model model = load(kBelowTheWires, "{omega_limit: 1.0e6, margin: 0.1, policy: " + GetParam() + "}");
   EXPECT_FALSE(model.assembled().beams().beams[0].kept_modes_unavailable.empty());
   EXPECT_NO_THROW(model.assembled().make_dynamics(false));
   try {
@@ -99,6 +105,9 @@ TEST(LargeBeamAdjustment, ACapAboveNearlyEveryModeLeavesTheOriginalModelRunning)
     EXPECT_NE(what.find("--adjust off"), std::string::npos) << what;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Policies, LargeBeamAdjustment, testing::Values("cap", "mass"),
+                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
 }  // namespace mbfe

@@ -3,7 +3,8 @@
 // over the coupled rows (modal_block_solver.h), and with the sparse LU and
 // the Woodbury correction over the kept modes, tested before against eq (27).
 // The two-span catenary: slack droppers, a contact pressing from below, a
-// driven carriage.
+// driven carriage. Both with the policy cap (blocks on B = M) and the policy
+// mass (blocks on B = K, whose modal values are the modes' stiffness).
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "api/mbfe.h"
+#include "runtime/simulation/assembled_model.h"
 #include "runtime/coupled/coupled_implicit_system.h"
 #include "tests/support/two_span_catenary.h"
 
@@ -23,8 +25,11 @@ namespace {
 // 1e-7 leaves room. A wrong coupling term is off by its whole size.
 constexpr double kSameSolutionTol = 1e-7;
 
-TEST(ModalBlockNewton, BlocksSolveAsTheWoodburyOverTheKeptModes) {
-  const Model model = Model::parse(test::with_wire_adjustment("{omega_limit: 800.0, margin: 0.1}"), "blocks.yaml");
+class ModalBlockNewton : public testing::TestWithParam<std::string> {};
+
+TEST_P(ModalBlockNewton, BlocksSolveAsTheWoodburyOverTheKeptModes) {
+  const Model model = Model::parse(
+      test::with_wire_adjustment("{omega_limit: 800.0, margin: 0.1, policy: " + GetParam() + "}"), "blocks.yaml");
   auto dyn_blocks = model.assembled().make_dynamics(true);
   auto dyn_modes = model.assembled().make_dynamics(true);
   runtime::CoupledImplicitSystem blocks(dyn_blocks);
@@ -66,6 +71,9 @@ TEST(ModalBlockNewton, BlocksSolveAsTheWoodburyOverTheKeptModes) {
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Policies, ModalBlockNewton, testing::Values("cap", "mass"),
+                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
 }  // namespace mbfe

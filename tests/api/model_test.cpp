@@ -50,7 +50,6 @@ runtime::SimulationRequest rk4(double step, double t_end) {
   request.integrator = runtime::parse_integrator("rk4");
   request.step = step;
   request.t_end = t_end;
-  request.handle_sigint = false;
   return request;
 }
 

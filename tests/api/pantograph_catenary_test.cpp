@@ -34,7 +34,6 @@ runtime::SimulationReport run(const Model& m, const char* integrator, double h, 
   r.t_end = kEnd;
   r.every = every;
   r.adjust = adjust;
-  r.handle_sigint = false;
   return m.simulate(r, rows);
 }
 

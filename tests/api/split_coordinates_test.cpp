@@ -4,7 +4,9 @@
 // must give the same motion to round-off. The model is the two-span catenary
 // with both wires adjusted, slack droppers, a unilateral contact driven along
 // and a moving load on the messenger: every kind of force the split form
-// reads or applies at a few DOFs.
+// reads or applies at a few DOFs. Each test runs with the policy cap
+// (B = M) and the policy mass (B = K), whose split coordinates differ in
+// their base solve and modal values.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -29,10 +31,14 @@ namespace {
 constexpr double kSummationOrderTol = 1e-13;
 
 // Keeps about half of each wire's modes (about 80 DOF each).
-const std::string kCapBlock = "{omega_limit: 800.0, margin: 0.1}";
+std::string adjustment_block(const std::string& policy) {
+  return "{omega_limit: 800.0, margin: 0.1, policy: " + policy + "}";
+}
 
-Model load() {
-  std::string text = test::with_wire_adjustment(kCapBlock);
+class SplitCoordinates : public testing::TestWithParam<std::string> {};
+
+Model load(const std::string& policy) {
+  std::string text = test::with_wire_adjustment(adjustment_block(policy));
   // A force running along the messenger: a load that changes with time.
   const std::string anchor = "    tension: 16000\n";
   text.insert(text.find(anchor) + anchor.size(),
@@ -51,8 +57,8 @@ void perturbed_state(const Model& model, int nb, Eigen::VectorXd& q, Eigen::Vect
   }
 }
 
-TEST(SplitCoordinates, RoundTripToNodalCoordinates) {
-  const Model model = load();
+TEST_P(SplitCoordinates, RoundTripToNodalCoordinates) {
+  const Model model = load(GetParam());
   auto dyn = model.assembled().make_dynamics(true);
   runtime::SplitBeamSystem split(dyn);
   ASSERT_EQ(dyn->split_structures().size(), 2u);
@@ -80,10 +86,10 @@ TEST(SplitCoordinates, RoundTripToNodalCoordinates) {
   EXPECT_EQ(qa.head(dyn->nb()), q.head(dyn->nb()));
 }
 
-TEST(SplitCoordinates, AReportDescribesTheStateItWasAskedFor) {
+TEST_P(SplitCoordinates, AReportDescribesTheStateItWasAskedFor) {
   // report() keeps its last answer for a second call at the same state; the
   // springs and links it leaves in the dynamics must still be that state's.
-  const Model model = load();
+  const Model model = load(GetParam());
   auto dyn = model.assembled().make_dynamics(true);
   runtime::SplitBeamSystem split(dyn);
   Eigen::VectorXd q0, qd0;
@@ -102,8 +108,8 @@ TEST(SplitCoordinates, AReportDescribesTheStateItWasAskedFor) {
   EXPECT_EQ(dyn->link_state(0).tension, tension);
 }
 
-TEST(SplitCoordinates, RungeKuttaFollowsTheNodalLowRankForm) {
-  const Model model = load();
+TEST_P(SplitCoordinates, RungeKuttaFollowsTheNodalLowRankForm) {
+  const Model model = load(GetParam());
   auto dyn_nodal = model.assembled().make_dynamics(true);
   auto dyn_split = model.assembled().make_dynamics(true);
   runtime::PartitionedSystem nodal(dyn_nodal);
@@ -155,12 +161,12 @@ TEST(SplitCoordinates, RungeKuttaFollowsTheNodalLowRankForm) {
   // The run exercises what the split form must get right.
   EXPECT_GT(slack_seen, 0) << "no dropper went slack";
   EXPECT_GT(max_force, 0.0) << "the contact never pressed";
-  std::printf("[ split    ] largest relative difference over %d rk4 steps: q %.3g, q' %.3g\n", kSteps, worst,
-              worst_rate);
+  std::printf("[ split    ] policy %s: largest relative difference over %d rk4 steps: q %.3g, q' %.3g\n",
+              GetParam().c_str(), kSteps, worst, worst_rate);
 }
 
-TEST(SplitCoordinates, SimulateTakesThemAndLeavesRowsWithoutCoordinates) {
-  const Model model = load();
+TEST_P(SplitCoordinates, SimulateTakesThemAndLeavesRowsWithoutCoordinates) {
+  const Model model = load(GetParam());
   runtime::SimulationRequest request;
   request.integrator = runtime::parse_integrator("rk4");
   request.step = 5e-4;
@@ -193,6 +199,9 @@ TEST(SplitCoordinates, SimulateTakesThemAndLeavesRowsWithoutCoordinates) {
   const runtime::SimulationReport nodal = model.simulate(request, augmented);
   EXPECT_EQ(nodal.variant.find("split coordinates"), std::string::npos) << nodal.variant;
 }
+
+INSTANTIATE_TEST_SUITE_P(Policies, SplitCoordinates, testing::Values("cap", "mass"),
+                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
 }  // namespace mbfe

@@ -34,8 +34,8 @@
 // - contacts: contact_missing_beam, contact_at_outside_beam, slider_pin_with_at,
 //   contact_unknown_point, pin_without_at
 // - resource limits: elements_hundred_million, total_dofs_over_limit, and, generated
-//   below, the 10,000-body chain (TenThousandBodyChain) and a 2001-body one
-//   (ChainOverBodyLimit)
+//   below, the 10,000-body chain (TenThousandBodyChain), a 201-body one
+//   (ChainOverBodyLimit) and 201 named points (PointsOverLimit)
 // - names that are not identifiers, C++ keywords: name_with_dash, name_starts_with_digit,
 //   name_keyword_int, model_name_class, model_name_code_injection, name_unicode,
 //   name_double_underscore, name_too_long, point_name_with_space, name_true
@@ -47,6 +47,11 @@
 //   output_name_contact_force, output_name_pin_multiplier, output_name_link_tension
 // - spatial models and closed loops: spatial_zero_axis, spatial_inertia_triangle,
 //   spatial_with_beam, constraint_same_body
+// - expressions in t whose constant parts have no value: expression_division_by_zero,
+//   expression_zero_over_zero, expression_log_of_zero, expression_log_of_negative,
+//   expression_sqrt_of_negative, expression_zero_to_zero, expression_negative_power_of_zero,
+//   expression_negative_base_fractional_power, expression_exp_overflow, expression_product_overflow
+//   (trees too deep or too large: tests/frontend/expression_parser_test.cpp)
 // - binary garbage and non-text: garbage.bin (written by make_garbage.py), nul_byte,
 //   invalid_utf8, control_character
 // A truly empty (0-byte) file cannot carry the header; parse_model_test covers it.
@@ -197,14 +202,39 @@ TEST(MalformedCorpusGenerated, TenThousandBodyChain) {
 
 // One body over the limit on bodies: refused, pointing at the list.
 TEST(MalformedCorpusGenerated, ChainOverBodyLimit) {
-  const std::string path = ::testing::TempDir() + "/chain_2001.yaml";
-  std::ofstream(path, std::ios::binary) << chain_text(2001);
+  const std::string path = ::testing::TempDir() + "/chain_201.yaml";
+  std::ofstream(path, std::ios::binary) << chain_text(201);
   double seconds = 0.0;
   EXPECT_EQ(refusal_of(path, seconds),
             path +
-                ":3:3: bodies: 2001 entries, more than the limit of 2000 "
+                ":3:3: bodies: 201 entries, more than the limit of 200 "
                 "(ParseLimits::max_bodies)");
   EXPECT_LT(seconds, kMaxParseSeconds);
+}
+
+// 200 bodies with a point each are within the limits; a second point on the last one is not.
+TEST(MalformedCorpusGenerated, PointsOverLimit) {
+  const std::string text = chain_text(200);
+  std::string with_points;
+  std::istringstream lines(text);
+  std::string line;
+  int bodies = 0;
+  while (std::getline(lines, line)) {
+    with_points += line + "\n";
+    if (line.rfind("    inertia:", 0) == 0)
+      with_points += ++bodies < 200 ? "    points: {tip: [0.5, 0]}\n" : "    points: {tip: [0.5, 0], mid: [0.25, 0]}\n";
+  }
+  const std::string path = ::testing::TempDir() + "/points_201.yaml";
+  std::ofstream(path, std::ios::binary) << with_points;
+  double seconds = 0.0;
+  // The last body's points are on line 2 + 6 * 200 = 1202 (six lines per body); 'mid' at column 29.
+  EXPECT_EQ(refusal_of(path, seconds),
+            path + ":1202:29: body 'link200': point 'mid': the bodies hold 201 named points up to here, more than "
+                   "the limit of 200 (ParseLimits::max_points)");
+  EXPECT_LT(seconds, kMaxParseSeconds);
+  ParseLimits more;
+  more.max_points = 201;
+  EXPECT_EQ(parse_model_text(with_points, "points.yaml", more).bodies.back().points.size(), 2u);
 }
 
 // With the limits raised, the 10,000-body chain is read, in bounded time:

@@ -261,6 +261,34 @@ beams:
   EXPECT_TRUE(model.beams.at(0).adjustment.active());
 }
 
+TEST(ParseModel, AdjustmentWithoutPolicyIsMassAndJoinedScopeCap) {
+  // The default policy is mass (docs/damping-adjustment.md, "Which policy is
+  // the default, and why"); a joined structure takes only the cap, so there
+  // the cap is the default. Named policies stay as named.
+  const auto policy_of = [](const std::string& block) {
+    const Model model = parse_model_text(R"(model: b
+beams:
+  - {name: b, origin: [0, 0], length: 1, elements: 2, section: {area: 1, inertia: 1}, material: {youngs_modulus: 1, density: 1},
+     adjustment: )" + block + R"(}
+)",
+                                         "b.yaml");
+    return model.beams.at(0).adjustment.policy;
+  };
+  EXPECT_EQ(policy_of("{omega_limit: 2000}"), AdjustmentPolicy::kMass);
+  EXPECT_EQ(policy_of("{omega_limit: 2000, scope: beam}"), AdjustmentPolicy::kMass);
+  // Scope joined needs linked beams: the two-span catenary with joined wires.
+  std::ifstream joined_file(std::string(MBFE_SOURCE_DIR) + "/tests/reference_outputs/models/two_span_joined.yaml");
+  const std::string joined((std::istreambuf_iterator<char>(joined_file)), std::istreambuf_iterator<char>());
+  ASSERT_NE(joined.find("margin: 0.1, scope: joined}"), std::string::npos);
+  for (const auto& beam : parse_model_text(joined, "two_span_joined.yaml").beams) {
+    if (beam.adjustment.present) EXPECT_EQ(beam.adjustment.policy, AdjustmentPolicy::kCap) << beam.name;
+  }
+  EXPECT_EQ(policy_of("{omega_limit: 2000, policy: cap}"), AdjustmentPolicy::kCap);
+  EXPECT_EQ(policy_of("{omega_limit: 2000, policy: keep_slow}"), AdjustmentPolicy::kKeepSlow);
+  EXPECT_EQ(policy_of("{omega_limit: 2000, policy: paper_eq25}"), AdjustmentPolicy::kPaperEq25);
+  EXPECT_EQ(policy_of("{omega_limit: 2000, policy: none}"), AdjustmentPolicy::kNone);
+}
+
 // ---- exact messages --------------------------------------------------------
 
 const char* const kTwoLinks = R"(model: m

@@ -19,6 +19,7 @@
 #include "generator/emit/generate_solver.h"
 #include "ir/coordinate_layout.h"
 #include "ir/model.h"
+#include "frontend/expression_parser.h"
 #include "frontend/parse_model.h"
 #include "ir/identifiers.h"
 
@@ -43,12 +44,14 @@ inline void require(bool ok, const std::string& what) {
 inline bool finite2(const ir::Vec2& v) { return std::isfinite(v[0]) && std::isfinite(v[1]); }
 inline bool finite3(const ir::Vec3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
-/// Every number written in the expression is finite (its value at some t may not be).
+/// Every number written in the expression is finite (its value at some t may
+/// not be), no part without t is infinite or undefined, and the tree keeps
+/// within the parser's limits.
 inline bool finite_numbers(const ir::Expression& e) {
-  if (e.kind == ir::Expression::Kind::kNumber && !std::isfinite(e.value)) return false;
-  for (const auto& a : e.args)
-    if (!finite_numbers(a)) return false;
-  return true;
+  for (const ir::ExpressionNode& n : e.nodes())
+    if (n.kind == ir::ExpressionNode::Kind::kNumber && !std::isfinite(n.value)) return false;
+  return !e.constant_fault() && e.depth() <= frontend::kMaxExpressionTreeDepth &&
+         e.nodes().size() <= static_cast<std::size_t>(frontend::kMaxExpressionNodes);
 }
 
 inline void check_invariants(const ir::Model& m) {
@@ -69,6 +72,7 @@ inline void check_invariants(const ir::Model& m) {
     for (double x : b.inertia3) require(std::isfinite(x), "body '" + b.name + "': inertia tensor");
     require(m.dimension == 3 || (b.joint.type != ir::JointType::kSpherical && b.joint.type != ir::JointType::kFree),
             "body '" + b.name + "': a quaternion joint in a planar model");
+    require(!b.joint.motion || finite_numbers(*b.joint.motion), "body '" + b.name + "': motion");
     for (const auto& p : b.points) {
       require(is_identifier(p.name), "point name '" + p.name + "' is not an identifier");
       require(finite2(p.position) && finite3(p.position3), "point '" + p.name + "' not finite");

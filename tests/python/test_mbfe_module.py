@@ -58,6 +58,23 @@ class SameAsTheCommandLine(unittest.TestCase):
         np.testing.assert_array_equal(run["force_tyre"], rows[:, header.index("force_tyre")])
         self.assertEqual(run.springs[0]["name"], "tyre")
 
+    def test_adjustment_estimate_as_in_the_sidecar(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "c.csv")
+            # Under the cap (the shipped model is under policy mass, whose estimate is small).
+            r = cli("simulate", model("bridge_moving_mass.yaml"), "--set", "beams.deck.adjustment.policy=cap",
+                    "--t-end", "0.01", "--quiet", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(out + ".json") as f:
+                expected = json.load(f)["adjustment_estimate"]
+        m = mbfe.load(model("bridge_moving_mass.yaml"), set={"beams.deck.adjustment.policy": "cap"})
+        run = m.simulate(t_end=0.01)
+        self.assertEqual(run.adjustment_estimate["max"], expected["max"])
+        self.assertEqual(run.adjustment_estimate["where"], expected["where"])
+        self.assertEqual(run.adjustment_estimate["points"][0]["estimate"], expected["points"][0]["estimate"])
+        self.assertTrue(any("adjustment estimate:" in n for n in run.notices))  # 4.3 %, above 1 %
+        self.assertIsNone(m.simulate(t_end=0.01, adjust=False).adjustment_estimate)
+
     def test_npy_output_reads_back_as_the_run(self):
         with tempfile.TemporaryDirectory() as tmp:
             out = os.path.join(tmp, "c.npy")
@@ -116,6 +133,26 @@ class SameAsTheCommandLine(unittest.TestCase):
             self.assertEqual(str(caught.exception), r.stderr.strip())
             self.assertTrue(str(caught.exception).startswith(path + ":5:"), str(caught.exception))
         self.assertTrue(issubclass(mbfe.ModelError, ValueError))
+
+    def test_set_overrides_as_the_command_line(self):
+        # set={PATH: value} is --set PATH=VALUE: the same run, the same message.
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "s.csv")
+            r = cli("simulate", model("double_pendulum.yaml"), "--set", "bodies.link2.mass=2.5", "--t-end", "0.3",
+                    "--quiet", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            header, rows = read_csv(out)
+        run = mbfe.load(model("double_pendulum.yaml"), set={"bodies.link2.mass": 2.5}).simulate(t_end=0.3)
+        for k, name in enumerate(header):
+            np.testing.assert_array_equal(run[name], rows[:, k], err_msg=name)
+        r = cli("eval", model("double_pendulum.yaml"), "--set", "bodies.link2.mass=-1", "--json")
+        self.assertEqual(r.returncode, 2)
+        with self.assertRaises(mbfe.ModelError) as caught:
+            mbfe.load(model("double_pendulum.yaml"), set={"bodies.link2.mass": -1})
+        self.assertEqual(str(caught.exception), r.stderr.strip())
+        self.assertIn("--set bodies.link2.mass=-1", str(caught.exception))
+        with self.assertRaises(TypeError):
+            mbfe.load(model("double_pendulum.yaml"), set={"bodies.link2.mass": [1, 2]})
 
     def test_request_the_model_cannot_run(self):
         with self.assertRaises(ValueError):

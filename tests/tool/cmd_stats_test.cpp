@@ -221,3 +221,80 @@ TEST(CmdStats, ADeviceOrAFolderIsRefusedBeforeReading) {
 
 }  // namespace
 }  // namespace mbfe
+
+namespace mbfe {
+namespace {
+
+/// A results CSV with two deck acceleration probes, a displacement probe
+/// and a contact force: a(t) = amplitude sin(2 pi 5 t) at deck@10, half
+/// that at deck@5.
+std::string acceleration_csv(const std::string& name, double amplitude) {
+  const std::string path = tmp(name);
+  std::ofstream out(path);
+  out.precision(17);
+  out << "t,deck@10,deck@10:acc,deck@5:acc,force_tyre\n";
+  const double kTwoPi = 6.283185307179586;
+  for (int i = 0; i <= 1000; ++i) {
+    const double t = i * 1e-3;
+    out << t << "," << -1e-3 << "," << amplitude * std::sin(kTwoPi * 5 * t) << ","
+        << 0.5 * amplitude * std::sin(kTwoPi * 5 * t) << ",9810\n";
+  }
+  return path;
+}
+
+TEST(CmdStatsDeckAcceleration, PeakOfEveryAccelerationColumnAndTheEn1990Check) {
+  // sin(2 pi 5 t) sampled every 1 ms peaks on the sample at t = 0.05 s: |a| = amplitude.
+  const std::string csv = acceleration_csv("deck_acc.csv", 4.2);
+  const CliRun r = run_cli("stats " + test::shell_quote(csv) + " --en1990 ballasted --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["columns"].size(), 2u);  // the displacement and the force are not accelerations
+  EXPECT_EQ(j["columns"][0]["name"], "deck@10:acc");
+  EXPECT_NEAR(j["columns"][0]["peak"].get<double>(), 4.2, 1e-12);
+  EXPECT_NEAR(j["columns"][1]["peak"].get<double>(), 2.1, 1e-12);
+  EXPECT_NEAR(j["peak"].get<double>(), 4.2, 1e-12);
+  EXPECT_EQ(j["en1990"]["limit"], 3.5);
+  EXPECT_EQ(j["en1990"]["ok"], false);
+  // Direct fastening allows 5 m/s^2.
+  const CliRun direct = run_cli("stats " + test::shell_quote(csv) + " --en1990 direct");
+  ASSERT_EQ(direct.status, 0) << direct.err;
+  EXPECT_NE(direct.out.find("direct-fastened track: limit 5 m/s^2; the peak is within it"), std::string::npos)
+      << direct.out;
+  // One column asked for: that one alone.
+  const CliRun one = run_cli("stats " + test::shell_quote(csv) + " --en1990 ballasted --column deck@5:acc --json");
+  ASSERT_EQ(one.status, 0) << one.err;
+  EXPECT_EQ(nlohmann::json::parse(one.out)["en1990"]["ok"], true);
+}
+
+TEST(CmdStatsDeckAcceleration, NoAccelerationColumnOrABadTrackIsAnError) {
+  const std::string csv = tmp("no_acc.csv");
+  {
+    std::ofstream out(csv);
+    out << "t,deck@10\n0,0\n0.001,1e-3\n";
+  }
+  const CliRun none = run_cli("stats " + test::shell_quote(csv));
+  EXPECT_EQ(none.status, 2);
+  EXPECT_NE(none.err.find("--column NAME is required: " + csv + " has no deck acceleration column (BEAM@S:acc"),
+            std::string::npos)
+      << none.err;
+  const CliRun track = run_cli("stats " + test::shell_quote(acceleration_csv("acc2.csv", 1.0)) + " --en1990 slab");
+  EXPECT_EQ(track.status, 2);
+  EXPECT_NE(track.err.find("--en1990 takes ballasted"), std::string::npos) << track.err;
+}
+
+TEST(CmdStats, ANpyIsKnownByItsMagicBytesWhateverItsName) {
+  test::TempDir dir;
+  const std::string npy = (dir / "run.npy").string(), renamed = (dir / "run.data").string();
+  const CliRun sim =
+      run_cli("simulate models/double_pendulum.yaml --t-end 0.2 --every 1 --quiet --out " + test::shell_quote(npy));
+  ASSERT_EQ(sim.status, 0) << sim.all();
+  std::filesystem::copy_file(npy, renamed);
+  std::filesystem::copy_file(npy + ".json", renamed + ".json");
+  const CliRun a = run_cli("stats " + test::shell_quote(npy) + " --column link2 --json");
+  const CliRun b = run_cli("stats " + test::shell_quote(renamed) + " --column link2 --json");
+  ASSERT_EQ(b.status, 0) << b.err;
+  EXPECT_EQ(nlohmann::json::parse(a.out), nlohmann::json::parse(b.out));
+}
+
+}  // namespace
+}  // namespace mbfe

@@ -11,7 +11,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "tests/support/cli.h"
 #include "tests/support/process.h"
@@ -248,6 +251,64 @@ TEST(Sweep, SlurmScriptsQuoteEveryPathAndRefuseControlCharacters) {
   EXPECT_NE(points.find("export MBFE_CACHE_DIR=" + shell_quote(out + "/cache") + "\n"), std::string::npos) << points;
   EXPECT_NE(slurp(out + "/slurm/collect.sbatch").find("#SBATCH --output=\"" + folder + "/slurm/collect.out\"\n"),
             std::string::npos);
+}
+
+}  // namespace
+}  // namespace mbfe::test
+
+namespace mbfe::test {
+namespace {
+
+/// A two-point sweep of `model` (the double pendulum's starting angle).
+std::string pendulum_sweep(const TempDir& dir, const std::string& model) {
+  const std::string path = (dir / "pend.yaml").string();
+  std::ofstream(path) << "sweep: pend\nmodel: " << model
+                      << "\nvary:\n  - {path: initial.q.link1, values: [0.1, 0.2]}\n"
+                         "simulate: {t_end: 0.2}\ncollect:\n  - {name: final_link2, column: link2, stat: final}\n";
+  return path;
+}
+
+TEST(CmdSweepSet, ASetRunsEveryPointAsTheEditedModelAndReachesTheSlurmScripts) {
+  TempDir dir;
+  const std::string shipped = std::string(MBFE_SOURCE_DIR) + "/models/double_pendulum.yaml";
+  std::string text = read_text(shipped);
+  const auto at = text.find("    mass: 1.0\n", text.find("  - name: link2"));
+  text.replace(at, 14, "    mass: 2.5\n");
+  const std::string edited = (dir / "edited.yaml").string();
+  std::ofstream(edited) << text;
+  TempDir other;
+  const std::string out_set = (dir / "set").string(), out_edited = (other / "edited").string();
+  const CliRun a = run_cli("sweep " + shell_quote(pendulum_sweep(dir, shipped)) + " --out " + shell_quote(out_set) +
+                           " --jobs 2 --quiet --set bodies.link2.mass=2.5");
+  ASSERT_EQ(a.status, 0) << a.all();
+  const CliRun b = run_cli("sweep " + shell_quote(pendulum_sweep(other, edited)) + " --out " +
+                           shell_quote(out_edited) + " --jobs 2 --quiet");
+  ASSERT_EQ(b.status, 0) << b.all();
+  // The summaries agree but for the wall times: compare the collected column.
+  const auto final_values = [](const std::string& summary) {
+    std::vector<std::string> out;
+    std::istringstream in(read_text(summary));
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) out.push_back(line.substr(0, line.find(",", line.find("done,0,") + 7)));
+    return out;
+  };
+  EXPECT_EQ(final_values(out_set + "/summary.csv"), final_values(out_edited + "/summary.csv"));
+  EXPECT_EQ(final_values(out_set + "/summary.csv").size(), 2u);
+
+  const CliRun bad = run_cli("sweep " + shell_quote(pendulum_sweep(dir, shipped)) + " --out " +
+                             shell_quote((dir / "bad").string()) + " --quiet --set bodies.link2.mas=2.5");
+  EXPECT_EQ(bad.status, 2) << bad.all();
+  EXPECT_NE(bad.err.find(shipped + ":12:5: unknown key 'mas'"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("(the value came from --set bodies.link2.mas=2.5)"), std::string::npos) << bad.err;
+
+  const std::string slurm_out = (dir / "slurm").string();
+  const CliRun slurm = run_cli("sweep " + shell_quote(pendulum_sweep(dir, shipped)) + " --out " +
+                               shell_quote(slurm_out) + " --slurm --dry-run --quiet --set bodies.link2.mass=2.5");
+  ASSERT_EQ(slurm.status, 0) << slurm.all();
+  for (const char* script : {"points.sbatch", "collect.sbatch"})
+    EXPECT_NE(read_text(slurm_out + "/slurm/" + script).find(" --set 'bodies.link2.mass=2.5' "), std::string::npos)
+        << script;
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The noise of a linearisation's eigenvalues (runtime/advisor/model_spectrum.h):
+// The noise of a linearisation's eigenvalues (runtime/coupled/linearization.h):
 // positive real parts up to kLinearizationNoiseRel max |lambda| are not
 // growth, eigenvalues up to kZeroModeRel max |lambda| are zero modes. The
 // spectra are those measured on the shipped models

@@ -16,6 +16,7 @@
 
 #include "tests/support/cli.h"
 #include "api/mbfe.h"
+#include "runtime/simulation/assembled_model.h"
 #include "api/solver_cache.h"
 #include "runtime/integrators/integrator.h"
 #include "runtime/coupled/augmented_system.h"
@@ -69,8 +70,6 @@ Final simulate(CoupledModel& cm, bool augmented, const std::string& integrator, 
   runtime::SimulationOptions opt;
   opt.step = h;
   opt.t_end = t_end;
-  opt.quiet = true;
-  opt.handle_sigint = false;
   opt.divergence_factor = 1e4;
   opt.every = 1;
   Final f;

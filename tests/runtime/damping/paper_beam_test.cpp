@@ -117,8 +117,6 @@ SimulationResult run_forward_euler(LinearSecondOrderSystem& ode, double h, doubl
   SimulationOptions opt;
   opt.step = h;
   opt.t_end = t_end;
-  opt.quiet = true;
-  opt.handle_sigint = false;
   opt.max_rows = 10;
   return run_simulation(ode, parse_integrator("forward_euler"), Eigen::VectorXd::Zero(ode.size()), opt,
                         [](double, const Eigen::VectorXd&) {});

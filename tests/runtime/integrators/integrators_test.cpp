@@ -1,10 +1,9 @@
 // Order of accuracy of every integrator on problems with known solutions, the
-// paper's Fig. 3, and the simulation driver's rows, divergence and SIGINT.
+// paper's Fig. 3, and the simulation driver's rows, divergence and a stop request.
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
 #include <cmath>
-#include <csignal>
 #include <string>
 
 #include "runtime/integrators/integrator.h"
@@ -25,8 +24,6 @@ double error_at(System& sys, const std::string& integrator, double h, double t_e
   SimulationOptions opt;
   opt.step = h;
   opt.t_end = t_end;
-  opt.quiet = true;
-  opt.handle_sigint = false;
   double t_last = 0.0, y_last = 0.0;
   const auto r = run_simulation(sys, parse_integrator(integrator), y0, opt, [&](double t, const Eigen::VectorXd& y) {
     t_last = t;
@@ -88,8 +85,6 @@ TEST(GeneralizedAlpha, SecondOrderOnDampedOscillator) {
       SimulationOptions opt;
       opt.step = h;
       opt.t_end = 2.0;
-      opt.quiet = true;
-      opt.handle_sigint = false;
       IntegratorSpec spec = parse_integrator("generalized_alpha");
       spec.rho_inf = rho;
       double q = 0.0, tl = 0.0;
@@ -138,8 +133,6 @@ TEST(PaperFigure3, ExplicitMidpointDivergesOnDecay) {
     SimulationOptions opt;
     opt.step = h;
     opt.t_end = 60.0;
-    opt.quiet = true;
-    opt.handle_sigint = false;
     const Eigen::VectorXd y0 = Eigen::Vector2d(1.0, 0.0);
     const auto r = run_simulation(sys, parse_integrator("explicit_midpoint"), y0, opt, [](double, const auto&) {});
     EXPECT_EQ(r.status, SimulationStatus::kDiverged) << "h = " << h;
@@ -156,8 +149,6 @@ TEST(Driver, RowsAreDecimatedAndEndOnTEnd) {
   opt.step = 1e-3;
   opt.t_end = 1.0005;  // 1000 full steps + a shortened one
   opt.every = 100;
-  opt.quiet = true;
-  opt.handle_sigint = false;
   std::vector<double> ts;
   const auto r = run_simulation(sys, parse_integrator("rk4"), Eigen::Vector2d(1, 0), opt,
                                 [&](double t, const auto&) { ts.push_back(t); });
@@ -179,8 +170,6 @@ TEST(Driver, DivergenceIsReportedWithTheLastGoodState) {
   SimulationOptions opt;
   opt.step = 0.7;
   opt.t_end = 1000.0;
-  opt.quiet = true;
-  opt.handle_sigint = false;
   double last_t = -1.0, last_y = 0.0;
   const auto r = run_simulation(sys, parse_integrator("forward_euler"), Eigen::Vector2d(1, 0), opt,
                                 [&](double t, const Eigen::VectorXd& y) {
@@ -209,20 +198,37 @@ TEST(Driver, DivergenceIsReportedWithTheLastGoodState) {
   EXPECT_NE(describe(r).find("diverged at t = "), std::string::npos);
 }
 
-TEST(Driver, SigintStopsCleanly) {
+TEST(Driver, KeepGoingStopsTheRunAfterTheLastAcceptedRow) {
+  // The caller's stop request (a Ctrl-C seen by the command line) arrives
+  // through keep_going, asked before each step: the rows written so far stay,
+  // the status says interrupted.
   Scalar sys({-1.0, 0.0});
   SimulationOptions opt;
   opt.step = 1e-3;
   opt.t_end = 10.0;
   opt.every = 1;
-  opt.quiet = true;
   int rows = 0;
-  const auto r = run_simulation(sys, parse_integrator("rk4"), Eigen::Vector2d(1, 0), opt, [&](double, const auto&) {
-    if (++rows == 50) std::raise(SIGINT);
-  });
+  opt.keep_going = [&](double, std::int64_t) { return rows < 50; };
+  const auto r = run_simulation(sys, parse_integrator("rk4"), Eigen::Vector2d(1, 0), opt,
+                                [&](double, const auto&) { ++rows; });
   EXPECT_EQ(r.status, SimulationStatus::kInterrupted);
   EXPECT_EQ(r.steps, 49);
   EXPECT_EQ(r.rows, 50);
+}
+
+TEST(Driver, InterruptStopsAStepwiseRun) {
+  Scalar sys({-1.0, 0.0});
+  SimulationOptions opt;
+  opt.step = 1e-3;
+  opt.t_end = 10.0;
+  FixedStepRun run(sys, parse_integrator("rk4"), Eigen::Vector2d(1, 0), opt);
+  for (int k = 0; k < 20; ++k) ASSERT_TRUE(run.step());
+  run.interrupt();
+  EXPECT_TRUE(run.finished());
+  EXPECT_FALSE(run.step());
+  EXPECT_EQ(run.result().status, SimulationStatus::kInterrupted);
+  EXPECT_EQ(run.steps(), 20);
+  EXPECT_DOUBLE_EQ(run.t(), 20 * 1e-3);
 }
 
 TEST(Driver, AStepLongerThanTheRunIsShortenedToTheRun) {
@@ -233,8 +239,6 @@ TEST(Driver, AStepLongerThanTheRunIsShortenedToTheRun) {
   SimulationOptions opt;
   opt.step = 1e300;
   opt.t_end = 1.0;
-  opt.quiet = true;
-  opt.handle_sigint = false;
   for (const char* name : {"rk4", "ab2"}) {  // one-step and multistep alike
     std::vector<double> ts, ys;
     const auto r = run_simulation(sys, parse_integrator(name), Eigen::Vector2d(1, 0), opt,
@@ -258,8 +262,6 @@ TEST(Driver, AStepCountBeyondTwoToThe53IsRefused) {
   SimulationOptions opt;
   opt.step = 1e-10;
   opt.t_end = 1e9;
-  opt.quiet = true;
-  opt.handle_sigint = false;
   try {
     run_simulation(sys, parse_integrator("rk4"), Eigen::Vector2d(1, 0), opt, [](double, const auto&) {});
     ADD_FAILURE() << "1e19 steps were taken on";

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "runtime/simulation/assembled_model.h"
 #include "tests/support/cli.h"
 #include "runtime/coupled/coupled_dynamics.h"
 
@@ -82,7 +83,6 @@ runtime::SimulationRequest rk4(double step, double t_end) {
   request.step = step;
   request.t_end = t_end;
   request.every = 1;
-  request.handle_sigint = false;
   return request;
 }
 
@@ -257,7 +257,6 @@ TEST(StaticStart, AFineStiffDeckUnderASoftlySprungBodyIsNoMechanism) {
   request.t_end = 1e-5;
   request.every = 1;
   request.adjust = false;
-  request.handle_sigint = false;
   const runtime::SimulationReport report = model.simulate(request, rows);
   ASSERT_TRUE(report.message.empty()) << report.message;
   constexpr double kAxleLoad = (20000.0 / 2.0 + 1500.0) * 9.81;

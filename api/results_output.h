@@ -12,13 +12,13 @@
 
 #include "runtime/simulation/simulate.h"
 
-namespace mbfe::tool {
+namespace mbfe {
 
 class ResultsOutput {
  public:
   /// Opens `path` for writing, or stdout when `path` is empty; `.npy` selects
   /// the binary format.
-  /// @throws UsageError (exit status 2) naming the path if it cannot be opened.
+  /// @throws runtime::InvalidInput (the tool: exit status 2) naming the path if it cannot be opened.
   explicit ResultsOutput(const std::string& path);
   ~ResultsOutput();
   ResultsOutput(const ResultsOutput&) = delete;
@@ -65,4 +65,4 @@ class ResultsObserver : public runtime::SimulationObserver {
   runtime::OutputLayout layout_;
 };
 
-}  // namespace mbfe::tool
+}  // namespace mbfe

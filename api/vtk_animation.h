@@ -16,7 +16,7 @@
 
 #include "api/mbfe.h"
 
-namespace mbfe::tool {
+namespace mbfe {
 
 /// Frames an animation may have: each is a file (a few kB for a small model,
 /// megabytes for a large one); 10,000 frames at 25 per second is nearly 7
@@ -51,4 +51,4 @@ class VtkAnimation : public runtime::SimulationObserver {
   std::vector<std::string> files_;
 };
 
-}  // namespace mbfe::tool
+}  // namespace mbfe

@@ -1,10 +1,10 @@
-// tool/json_text.h: JSON text never fails on bytes that are not UTF-8; they
+// api/json_text.h: JSON text never fails on bytes that are not UTF-8; they
 // come out as U+FFFD, everything else as nlohmann::json writes it.
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "tool/json_text.h"
+#include "api/json_text.h"
 
 namespace mbfe::tool {
 namespace {

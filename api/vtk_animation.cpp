@@ -1,4 +1,4 @@
-#include "tool/vtk_animation.h"
+#include "api/vtk_animation.h"
 
 #include <algorithm>
 #include <array>
@@ -10,8 +10,9 @@
 #include <stdexcept>
 
 #include "runtime/fem/hermite_shape.h"
+#include "runtime/simulation/assembled_model.h"
 
-namespace mbfe::tool {
+namespace mbfe {
 
 namespace fs = std::filesystem;
 
@@ -75,7 +76,8 @@ void VtkAnimation::begin(const runtime::OutputLayout& layout) {
 
 double VtkAnimation::slope_at(const runtime::OutputRow& row, std::size_t beam, double s) const {
   const ir::Model& ir = model_.ir();
-  const runtime::BeamPart& bp = model_.assembled().beams().beams[beam];
+  // Geometry only: the beams' systems, the same in either assembly (Model::assembled_for).
+  const runtime::BeamPart& bp = model_.assembled_for(false).beams().beams[beam];
   const double le = bp.system.element_length;
   if (!(s >= 0.0 && s <= bp.system.length)) return 0.0;  // off the beam: no force to tilt
   const int e = std::min(static_cast<int>(s / le), ir.beams[beam].elements - 1);
@@ -120,7 +122,7 @@ void VtkAnimation::write_frame(const runtime::OutputRow& row, const std::string&
   int part = 0;
   // Beams: the deformed axis.
   if (!ir.beams.empty()) {
-    const runtime::BeamModel& beams = model_.assembled().beams();
+    const runtime::BeamModel& beams = model_.assembled_for(false).beams();
     for (std::size_t b = 0; b < ir.beams.size(); ++b) {
       const ir::Beam& beam = ir.beams[b];
       const runtime::BeamPart& bp = beams.beams[b];
@@ -230,4 +232,4 @@ void VtkAnimation::write_frame(const runtime::OutputRow& row, const std::string&
   if (!file) throw std::runtime_error(path + ": cannot write");
 }
 
-}  // namespace mbfe::tool
+}  // namespace mbfe

@@ -1,4 +1,4 @@
-#include "tool/results_output.h"
+#include "api/results_output.h"
 
 #include <sys/stat.h>
 
@@ -8,9 +8,9 @@
 #include <stdexcept>
 
 #include "api/csv_format.h"
-#include "tool/cli_args.h"
+#include "runtime/errors/invalid_input.h"
 
-namespace mbfe::tool {
+namespace mbfe {
 
 namespace {
 constexpr std::size_t kFlushEveryRows = 256;  // bounded loss window even if the process is killed
@@ -45,8 +45,8 @@ ResultsOutput::ResultsOutput(const std::string& path) : path_(path), npy_(ends_w
   } else {
     file_ = std::fopen(path.c_str(), "w");
     // A path that cannot be written (no such folder, no permission) is bad
-    // input: UsageError, exit status 2, before anything is computed.
-    if (!file_) throw UsageError(path + ": cannot write the output: " + std::strerror(errno));
+    // input: InvalidInput, exit status 2, before anything is computed.
+    if (!file_) throw runtime::InvalidInput(path + ": cannot write the output: " + std::strerror(errno));
     owned_ = true;
     struct stat info {};
     regular_ = ::fstat(fileno(file_), &info) == 0 && S_ISREG(info.st_mode);
@@ -113,4 +113,4 @@ void ResultsOutput::flush() {
   if (std::fflush(file_) != 0) throw std::runtime_error(path_ + ": write failed: " + std::strerror(errno));
 }
 
-}  // namespace mbfe::tool
+}  // namespace mbfe

@@ -8,11 +8,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace mbfe::tool {
+namespace mbfe {
 
 /// `j` as text; `indent` < 0: on one line.
 inline std::string json_text(const nlohmann::json& j, int indent = -1) {
   return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-}  // namespace mbfe::tool
+}  // namespace mbfe

@@ -1,0 +1,77 @@
+#include "api/run_record.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include "api/json_text.h"
+
+namespace mbfe {
+
+nlohmann::json adjustment_estimate_json(const runtime::AdjustmentEstimate& estimate) {
+  nlohmann::json points = nlohmann::json::array();
+  for (const runtime::AdjustmentEstimatePoint& p : estimate.points)
+    points.push_back({{"what", p.what},
+                      {"beam", p.beam},
+                      {"s", p.s},
+                      {"moving", p.moving},
+                      {"series_compliance", p.series_compliance},
+                      {"omega", p.omega},
+                      {"compliance", p.compliance},
+                      {"static_change", p.static_change},
+                      {"dynamic_change", p.dynamic_change},
+                      {"changed_share", p.changed_share},
+                      {"estimate", p.estimate}});
+  nlohmann::json j = {{"points", points}, {"max", estimate.max}};
+  j["where"] = estimate.largest >= 0 ? nlohmann::json(estimate.points[static_cast<std::size_t>(estimate.largest)].what)
+                                     : nlohmann::json();
+  j["not_estimated"] = estimate.not_estimated;
+  nlohmann::json limits = nlohmann::json::array();
+  for (const runtime::AdjustmentEstimate::Limit& l : estimate.limits)
+    limits.push_back({{"beam", l.beam}, {"omega_limit", l.omega_limit}, {"chosen", l.chosen}});
+  j["omega_limits"] = limits;
+  return j;
+}
+
+nlohmann::json run_record(const Model& model, const runtime::SimulationRequest& request,
+                          const runtime::SimulationReport& report, const runtime::OutputLayout& layout,
+                          std::size_t rows) {
+  nlohmann::json j;
+  j["mbfe"] = MBFE_GENERATOR_VERSION;
+  j["model"] = {{"name", model.ir().name}, {"file", model.ir().source_path}, {"sha256", model.ir().source_sha256}};
+  j["integrator"] = request.integrator.name;
+  j["step"] = request.step;
+  j["t_end"] = request.t_end;
+  j["variant"] = report.variant;
+  nlohmann::json columns = nlohmann::json::array();
+  for (std::size_t k = 0; k < layout.columns.size(); ++k)
+    columns.push_back({{"name", layout.columns[k]}, {"unit", k < layout.units.size() ? layout.units[k] : ""}});
+  j["columns"] = columns;
+  j["rows"] = rows;
+  j["status"] = runtime::status_name(report);
+  j["message"] = report.message;
+  j["steps"] = report.run.steps;
+  j["t_reached"] = report.run.t;
+  j["wall_seconds"] = report.run.wall_seconds;
+  if (report.run.newton.iterations > 0)
+    j["newton"] = {{"iterations", report.run.newton.iterations},
+                   {"factorizations", report.run.newton.factorizations}};
+  nlohmann::json springs = nlohmann::json::array();
+  for (const runtime::SpringContactTally& c : report.springs)
+    springs.push_back({{"name", c.name}, {"lift_offs", c.lift_offs}, {"time_off", c.time_off}});
+  if (!springs.empty()) j["springs"] = springs;
+  nlohmann::json links = nlohmann::json::array();
+  for (const runtime::LinkSlackTally& l : report.links)
+    links.push_back({{"name", l.name}, {"slackenings", l.slackenings}, {"time_slack", l.time_slack}});
+  if (!links.empty()) j["links"] = links;
+  if (report.adjustment_estimate) j["adjustment_estimate"] = adjustment_estimate_json(*report.adjustment_estimate);
+  return j;
+}
+
+void write_run_record(const std::string& results_path, const nlohmann::json& record) {
+  std::error_code not_a_file;
+  if (!std::filesystem::is_regular_file(results_path, not_a_file)) return;
+  std::ofstream out(results_path + ".json");
+  out << json_text(record, 2) << "\n";
+}
+
+}  // namespace mbfe

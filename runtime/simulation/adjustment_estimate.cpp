@@ -1,0 +1,252 @@
+#include "runtime/simulation/adjustment_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include "runtime/damping/compliance_change.h"
+#include "runtime/errors/invalid_input.h"
+
+namespace mbfe::runtime {
+
+namespace {
+
+// Points on a moving point's path: nodes spread along the beam. The static
+// change varies smoothly between nodes (it is a ratio of two smooth point
+// compliances), so a few dozen places find its largest value to a few per cent.
+constexpr int kPathSamples = 33;
+
+/// A place (or a path) on one beam and what acts there.
+struct Place {
+  std::string what;
+  int beam = -1;
+  double s = 0.0;
+  bool moving = false;
+  double series = 0.0;
+  double omega = 0.0;  // rad/s, the force's frequency (0: quasi-static)
+};
+
+std::vector<Place> places(const ir::Model& model, const std::vector<ProbeSpec>& probes) {
+  std::vector<Place> out;
+  for (const ir::Contact& c : model.contacts) {
+    const char* type = c.type == ir::ContactType::kPin ? "pin" : c.type == ir::ContactType::kSliderPin ? "slider_pin" : "slider_spring";
+    Place p{"contact '" + c.name + "' (" + type + ")", c.beam, c.at, c.type != ir::ContactType::kPin, 0.0};
+    if (c.type == ir::ContactType::kSliderSpring && c.stiffness > 0.0) {
+      p.series = 1.0 / c.stiffness;
+      // The body bouncing on the contact spring: the fastest force a
+      // penalty contact carries (a wheel on the rail, a pantograph head on
+      // the wire), with the structure taken rigid, which overestimates it.
+      const double mass = c.body >= 0 ? model.bodies[static_cast<std::size_t>(c.body)].mass : 0.0;
+      if (mass > 0.0) p.omega = std::sqrt(c.stiffness / mass);
+    }
+    out.push_back(p);
+  }
+  for (const ir::Link& l : model.links) {
+    const double series = l.stiffness > 0.0 ? 1.0 / l.stiffness : 0.0;
+    out.push_back({"link '" + l.name + "' end a", l.a.beam, l.a.at, false, series});
+    out.push_back({"link '" + l.name + "' end b", l.b.beam, l.b.at, false, series});
+  }
+  for (std::size_t i = 0; i < model.beams.size(); ++i) {
+    const int beam = static_cast<int>(i);
+    for (const ir::BeamPointLoad& load : model.beams[i].loads) out.push_back({"point load", beam, load.at, false, 0.0});
+    for (std::size_t k = 0; k < model.beams[i].moving_loads.size(); ++k)
+      out.push_back({"moving load", beam, 0.0, true, 0.0});
+  }
+  for (const ProbeSpec& probe : probes)
+    for (std::size_t i = 0; i < model.beams.size(); ++i)
+      if (model.beams[i].name == probe.beam) out.push_back({"probe " + probe.label, static_cast<int>(i), probe.s, false, 0.0});
+  return out;
+}
+
+/// The weights e (w = e^T q) of the deflection at s over the beam's free DOFs.
+Eigen::VectorXd deflection_weights(const BeamSystem& system, double s) {
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(system.M.rows());
+  const BeamPointWeights w = point_weights(system, s);
+  for (int a = 0; a < 4; ++a)
+    if (w.free_index[a] >= 0) e[w.free_index[a]] += w.w[a];
+  return e;
+}
+
+/// Where a place is evaluated: its s, or for a moving place nodes spread along the beam.
+std::vector<double> positions(const Place& place, const BeamSystem& system) {
+  if (!place.moving) return {place.s};
+  std::vector<double> path;
+  const int samples = std::min(kPathSamples, system.num_nodes);
+  for (int k = 0; k < samples; ++k) {
+    const int node = samples == 1 ? 0 : static_cast<int>(std::lround(double(k) * (system.num_nodes - 1) / (samples - 1)));
+    path.push_back(std::min(system.length, node * system.element_length));
+  }
+  return path;
+}
+
+/// Why a beam's adjustment cannot be estimated, or empty.
+std::string unsupported(const ir::Beam& beam, const BeamPart& part) {
+  if (beam.adjustment.scope == ir::AdjustmentScope::kJoined) return "scope joined";
+  if (!part.basis.complete) {
+    const auto policy = part.adjusted.policy;
+    if (policy != ir::AdjustmentPolicy::kCap && policy != ir::AdjustmentPolicy::kMass)
+      return "a partial modal basis with a policy other than cap or mass";
+    if (part.adjusted.change.empty() || part.adjusted.change.back() == ModeChange::kKept)
+      return "its partial modal basis ends in a mode the policy keeps";
+  }
+  return {};
+}
+
+}  // namespace
+
+AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::vector<ProbeSpec>& probes) {
+  AdjustmentEstimate out;
+  const ir::Model& ir = model.ir();
+  const BeamModel& beams = model.beams();
+  const std::vector<Place> all = places(ir, probes);
+  for (std::size_t i = 0; i < beams.beams.size() && i < ir.beams.size(); ++i) {
+    const BeamPart& part = beams.beams[i];
+    if (!part.has_adjustment) continue;
+    const std::string name = "'" + ir.beams[i].name + "'";
+    out.limits.push_back({ir.beams[i].name, ir.beams[i].adjustment.omega_limit, ir.beams[i].adjustment.omega_limit_auto});
+    if (const std::string why = unsupported(ir.beams[i], part); !why.empty()) {
+      out.not_estimated.push_back(name + ": " + why);
+      continue;
+    }
+    std::unique_ptr<ComplianceChangeEstimator> estimator;
+    try {
+      estimator = std::make_unique<ComplianceChangeEstimator>(part.system.M, part.system.K, part.system.C, part.basis,
+                                                              part.original);
+    } catch (const std::exception& e) {
+      out.not_estimated.push_back(name + ": " + e.what());
+      continue;
+    }
+    const BeamSystem& system = part.system;
+    for (const Place& place : all) {
+      if (place.beam != static_cast<int>(i)) continue;
+      const std::vector<double> path = positions(place, system);
+      AdjustmentEstimatePoint best;
+      best.what = place.what;
+      best.beam = ir.beams[i].name;
+      best.s = place.s;
+      best.moving = place.moving;
+      best.series_compliance = place.series;
+      best.omega = place.omega;
+      bool first = true;
+      for (const double s : path) {
+        const auto point = estimator->point({deflection_weights(system, s), place.series, place.omega});
+        const ComplianceChange change = estimator->evaluate(point, part.adjusted);
+        const double estimate = std::max(change.static_change, change.change);
+        if (first || estimate > best.estimate) {
+          best.s = s;
+          best.compliance = change.compliance;
+          best.static_change = change.static_change;
+          best.dynamic_change = change.change;
+          best.changed_share = change.changed_share;
+          best.estimate = estimate;
+          first = false;
+        }
+      }
+      out.points.push_back(best);
+      if (out.largest < 0 || best.estimate > out.max) {
+        out.largest = static_cast<int>(out.points.size()) - 1;
+        out.max = best.estimate;
+      }
+    }
+  }
+  return out;
+}
+
+double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAnalysisOptions& options) {
+  const ir::Beam& given = model.beams.at(beam);
+  const auto where = [&]() {
+    return model.source_path + ":" + std::to_string(given.adjustment.omega_limit_loc.line) + ":" +
+           std::to_string(given.adjustment.omega_limit_loc.column) + ": beam '" + given.name + "': omega_limit: auto ";
+  };
+  if (given.adjustment.scope == ir::AdjustmentScope::kJoined)
+    throw InvalidInput(where() + "takes scope beam (the estimate covers one beam's modes), got scope joined");
+  // The beam's every mode, unadjusted: the limit far above its fastest root.
+  ir::Beam b = given;
+  b.adjustment.omega_limit_auto = false;
+  b.adjustment.policy = ir::AdjustmentPolicy::kNone;
+  BeamAnalysisOptions every_mode = options;
+  every_mode.modes_kept_by_cap = false;
+  const BeamPart part = analyse_beam(b, model.gravity, every_mode);
+  if (!part.basis.complete)
+    throw InvalidInput(where() + "needs every mode of the beam: it has " + std::to_string(part.system.M.rows()) +
+                       " DOFs, beyond the dense modal analysis (" + std::to_string(options.dense_limit) +
+                       "); give omega_limit in rad/s");
+  const ComplianceChangeEstimator estimator(part.system.M, part.system.K, part.system.C, part.basis, part.original);
+  std::vector<ComplianceChangeEstimator::Point> points;
+  for (const Place& place : places(model, {}))
+    if (place.beam == static_cast<int>(beam))
+      for (const double s : positions(place, part.system))
+        points.push_back(estimator.point({deflection_weights(part.system, s), place.series, place.omega}));
+  ir::Adjustment adjustment = given.adjustment;
+  adjustment.omega_limit_auto = false;
+  const auto largest = [&](double omega_limit) {
+    adjustment.omega_limit = omega_limit;
+    const AdjustedModes adjusted = adjust_modes(part.original, adjustment);
+    double worst = 0.0;
+    for (const auto& point : points) {
+      const ComplianceChange change = estimator.evaluate(point, adjusted);
+      worst = std::max({worst, change.static_change, change.change});
+    }
+    return worst;
+  };
+  double fastest = 0.0;
+  for (const ModalDynamics& mode : part.original) fastest = std::max(fastest, fastest_root(mode));
+  const double tolerance = given.adjustment.tolerance;
+  // Above the fastest root nothing is capped; what is left is the damping floor's.
+  const double top = 1.01 * fastest;
+  if (const double floor_only = largest(top); floor_only > tolerance)
+    throw InvalidInput(where() + "no limit meets tolerance " + std::to_string(tolerance) +
+                       ": the damping floor zeta_min alone changes the receptance by " + std::to_string(floor_only) +
+                       "; lower zeta_min or raise the tolerance");
+  // A log grid down from the top: the lowest grid point from which every
+  // higher one meets the tolerance (the estimate need not fall monotonically
+  // with the limit), then bisection towards the grid point below it.
+  const double bottom = 0.5 * part.basis.omega[0];
+  constexpr int kPerDecade = 40;
+  const int count = std::max(2, static_cast<int>(std::ceil(kPerDecade * std::log10(top / bottom))));
+  const double ratio = std::pow(top / bottom, 1.0 / count);
+  double pass = top, fail = 0.0;
+  for (int k = 1; k <= count; ++k) {
+    const double omega = top / std::pow(ratio, k);
+    if (largest(omega) > tolerance) {
+      fail = omega;
+      break;
+    }
+    pass = omega;
+  }
+  if (fail == 0.0) return pass;  // every limit down to half the lowest mode meets it
+  constexpr int kBisections = 40;
+  for (int k = 0; k < kBisections; ++k) {
+    const double mid = std::sqrt(pass * fail);
+    (largest(mid) > tolerance ? fail : pass) = mid;
+  }
+  return pass;
+}
+
+std::string adjustment_notice(const AdjustmentEstimate& estimate, const ir::Model& model) {
+  if (estimate.largest < 0 || !(estimate.max > kAdjustmentNoticeThreshold)) return {};
+  const AdjustmentEstimatePoint& p = estimate.points[static_cast<std::size_t>(estimate.largest)];
+  const ir::Beam* beam = nullptr;
+  for (const ir::Beam& b : model.beams)
+    if (b.name == p.beam) beam = &b;
+  const ir::Adjustment a = beam ? beam->adjustment : ir::Adjustment{};
+  const bool mass = a.policy == ir::AdjustmentPolicy::kMass;
+  const char* policy = mass                                             ? "mass"
+                       : a.policy == ir::AdjustmentPolicy::kCap        ? "cap"
+                       : a.policy == ir::AdjustmentPolicy::kPaperEq25  ? "paper_eq25"
+                                                                       : "keep_slow";
+  std::ostringstream line;
+  line << std::setprecision(3) << "adjustment estimate: the adjusted modes of beam '" << p.beam
+       << "' change the compliance at " << p.what << " (" << (p.moving ? "largest at " : "") << "s = " << p.s
+       << " m";
+  if (p.omega > 0.0) line << ", at " << p.omega << " rad/s";
+  line << ") by " << 100.0 * p.estimate << " % (policy " << policy << ", omega_limit " << a.omega_limit
+       << " rad/s); " << (mass ? "raise omega_limit" : "raise omega_limit or use policy: mass")
+       << " (docs/damping-adjustment.md, \"The accuracy estimate\")";
+  return line.str();
+}
+
+}  // namespace mbfe::runtime

@@ -1,0 +1,114 @@
+// `mbfe simulate --check-adjustment T` through the real binary: the figures in
+// the sidecar against the same comparison made here from two CSVs, the
+// adjusted run and a separate run of the original model with
+// generalized_alpha at the step the check documents; and the estimate
+// written beside every adjusted run.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "tests/support/cli.h"
+#include "tests/support/process.h"
+
+namespace mbfe::test {
+namespace {
+
+// Both sides compare the same numbers read back exactly from the CSVs.
+constexpr double kSameNumbersRel = 1e-9;
+
+std::string full(double x) {
+  std::ostringstream o;
+  o << std::setprecision(17) << x;
+  return o.str();
+}
+
+/// max_t |a(t) - b(t)| / max_t |b(t)| of one column, b's rows at a's times
+/// (b has `ratio` rows per row of a).
+double relative_difference(const Csv& a, const Csv& b, const std::string& column, int ratio) {
+  const int ca = a.column(column), cb = b.column(column);
+  EXPECT_GE(ca, 0);
+  EXPECT_GE(cb, 0);
+  double peak = 0.0, diff = 0.0;
+  for (const auto& row : b.rows) peak = std::max(peak, std::abs(row[cb]));
+  for (std::size_t k = 0; k < a.rows.size(); ++k) {
+    const std::size_t kb = k * static_cast<std::size_t>(ratio);
+    if (kb >= b.rows.size()) break;
+    EXPECT_NEAR(a.rows[k][0], b.rows[kb][0], 1e-12);  // the same time
+    diff = std::max(diff, std::abs(a.rows[k][ca] - b.rows[kb][cb]));
+  }
+  return diff / peak;
+}
+
+TEST(SimulateAdjustmentCheck, TheSidecarHoldsTheDifferenceToTheOriginalModelsImplicitRun) {
+  TempDir dir;
+  const std::string model = std::string(MBFE_SOURCE_DIR) + "/models/bridge_moving_mass.yaml";
+  const fs::path adjusted = dir / "adjusted.csv", original = dir / "original.csv";
+  constexpr double kCheck = 0.3;  // s
+  // Under the cap, whose wheel force is visibly off (the shipped model is under policy mass).
+  const CliRun r = run_cli("simulate " + shell_quote(model) + " --set beams.deck.adjustment.policy=cap --quiet --integrator rk4 --step 1e-3 --t-end 0.4 --every 1 " +
+                           "--check-adjustment 0.3 --out " + shell_quote(adjusted.string()));
+  ASSERT_EQ(r.status, 0) << r.all();
+  EXPECT_NE(r.err.find("mbfe: adjustment check over 0.3 s against the original model (generalized_alpha, step "),
+            std::string::npos)
+      << r.err;
+  const nlohmann::json record = nlohmann::json::parse(read_text(adjusted.string() + ".json"));
+  ASSERT_TRUE(record.contains("adjustment_check")) << record.dump();
+  const nlohmann::json& check = record["adjustment_check"];
+  // The step: 1e-3 s divided by the smallest whole number giving at least
+  // 2000 steps over 0.3 s: 7.
+  constexpr int kRatio = 7;
+  const double h = 1e-3 / kRatio;
+  EXPECT_DOUBLE_EQ(check["step"].get<double>(), h);
+  EXPECT_EQ(check["integrator"], "generalized_alpha");
+  EXPECT_EQ(check["message"], "");
+  ASSERT_EQ(check["contact_force"]["column"], "force_tyre");
+
+  // The same comparison by hand.
+  const CliRun o = run_cli("simulate " + shell_quote(model) + " --quiet --adjust off --integrator generalized_alpha --step " +
+                           full(h) + " --t-end " + full(kCheck) + " --every 1 --out " + shell_quote(original.string()));
+  ASSERT_EQ(o.status, 0) << o.all();
+  Csv a = read_csv(adjusted.string());
+  const Csv b = read_csv(original.string());
+  a.rows.erase(std::remove_if(a.rows.begin(), a.rows.end(), [&](const auto& row) { return row[0] > kCheck + 1e-12; }),
+               a.rows.end());
+  const double force = relative_difference(a, b, "force_tyre", kRatio);
+  EXPECT_NEAR(check["contact_force"]["relative"].get<double>(), force, kSameNumbersRel * force);
+  EXPECT_GT(force, 0.01);  // the cap's wheel force is visibly off (docs/accuracy-vs-cost-coupled.md)
+  const std::string column = check["displacement"]["column"];
+  const double displacement = relative_difference(a, b, column, kRatio);
+  EXPECT_NEAR(check["displacement"]["relative"].get<double>(), displacement, kSameNumbersRel * displacement);
+
+  // Every adjusted run records its estimate; this one is above 1 % and says so.
+  ASSERT_TRUE(record.contains("adjustment_estimate")) << record.dump();
+  EXPECT_EQ(record["adjustment_estimate"]["where"], "contact 'tyre' (slider_spring)");
+  EXPECT_GT(record["adjustment_estimate"]["max"].get<double>(), 0.01);
+  EXPECT_NE(r.err.find("mbfe: adjustment estimate: the adjusted modes of beam 'deck' change the compliance at "
+                       "contact 'tyre' (slider_spring)"),
+            std::string::npos)
+      << r.err;
+  // The original model's run has no estimate.
+  EXPECT_FALSE(nlohmann::json::parse(read_text(original.string() + ".json")).contains("adjustment_estimate"));
+}
+
+TEST(SimulateAdjustmentCheck, ACheckWithoutAnAdjustedRunOrBeyondTheRunIsBadInput) {
+  TempDir dir;
+  const std::string model = std::string(MBFE_SOURCE_DIR) + "/models/bridge_moving_mass.yaml";
+  const std::string out = " --out " + shell_quote((dir / "x.csv").string());
+  const CliRun off = run_cli("simulate " + shell_quote(model) + " --quiet --adjust off --t-end 0.1 --check-adjustment 0.05" + out);
+  EXPECT_EQ(off.status, 2) << off.all();
+  EXPECT_NE(off.err.find("--check-adjustment compares an adjusted run with the original model; this run is not adjusted"),
+            std::string::npos)
+      << off.err;
+  const CliRun beyond = run_cli("simulate " + shell_quote(model) + " --quiet --t-end 0.1 --check-adjustment 0.2" + out);
+  EXPECT_EQ(beyond.status, 2) << beyond.all();
+  EXPECT_NE(beyond.err.find("--check-adjustment: expected a time in s in (0, t_end = 0.1"), std::string::npos)
+      << beyond.err;
+}
+
+}  // namespace
+}  // namespace mbfe::test

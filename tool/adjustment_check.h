@@ -1,0 +1,76 @@
+// mbfe simulate --check-adjustment T: after an adjusted run, the first T
+// seconds again with the original model, implicitly (generalized_alpha), and
+// how far the adjusted run's contact forces and displacements are from it
+// (docs/damping-adjustment.md, "Checking a run").
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "api/mbfe.h"
+
+namespace mbfe::tool {
+
+/// Keeps the rows of a run up to a time (what the check compares).
+class RowsUpTo : public runtime::SimulationObserver {
+ public:
+  explicit RowsUpTo(double t_max) : t_max_(t_max) {}
+  void begin(const runtime::OutputLayout& layout) override { layout_ = layout; }
+  void row(const runtime::OutputRow& row) override {
+    if (row.t > t_max_ * (1.0 + 1e-12)) return;
+    t_.push_back(row.t);
+    rows_.push_back(row.values);
+  }
+  const runtime::OutputLayout& layout() const { return layout_; }
+  const std::vector<double>& t() const { return t_; }
+  const std::vector<std::vector<double>>& rows() const { return rows_; }
+
+ private:
+  double t_max_;
+  runtime::OutputLayout layout_;
+  std::vector<double> t_;
+  std::vector<std::vector<double>> rows_;
+};
+
+/// The largest difference of one kind of column over the rows up to T,
+/// relative to that column's peak in the reference; columns whose peak is
+/// below 1 % of the largest of their kind are left out (a contact that
+/// barely touched, the deflection under a wheel on a stiff slab).
+struct ColumnDifference {
+  double relative = 0.0;  // max |x - x_ref| / peak
+  std::string column;     // the column where it is largest (empty: no such column)
+};
+
+struct AdjustmentCheck {
+  double t_end = 0.0;  // s, T
+  double step = 0.0;   // s, the original model's implicit step
+  std::string integrator = "generalized_alpha";
+  ColumnDifference contact_force;  // force_* and lambda_* columns (N)
+  ColumnDifference displacement;   // columns in m (rigid coordinates but driven ones, beam deflections, probes) but phi_abs
+  /// Empty when the original model's run completed; otherwise why not
+  /// (the differences are then over the rows it reached).
+  std::string message;
+};
+
+/// The step of the check: the run's step divided by the smallest whole
+/// number that gives at least 2000 steps over T (generalized-alpha's own
+/// error then stays near 1e-4 of a contact force on the shipped models).
+double check_step(double run_step, double t_check);
+
+/// Runs the original model over [0, t_check] with generalized_alpha at
+/// check_step (the request's probes, start and formulation) and compares it
+/// with `adjusted`, the rows of the adjusted run up to t_check (linear
+/// interpolation of the reference at the adjusted run's times).
+/// @throws as Model::simulate for a request the original model cannot run.
+AdjustmentCheck check_adjustment(const Model& model, const runtime::SimulationRequest& run,
+                                 const RowsUpTo& adjusted, double t_check);
+
+/// The sidecar's "adjustment_check": {t_end, integrator, step,
+/// contact_force: {relative, column}, displacement: {relative, column}, message}.
+nlohmann::json adjustment_check_json(const AdjustmentCheck& check);
+
+/// The line for stderr.
+std::string adjustment_check_line(const AdjustmentCheck& check);
+
+}  // namespace mbfe::tool
