@@ -24,6 +24,9 @@ fi
 if [[ "${MBFE_WITH_SLURM:-0}" == 1 ]]; then
   PACKAGES+=(slurm-wlm munge)                 # the one-node Slurm of scripts/slurm-local.sh
 fi
+if [[ "${MBFE_WITH_BASELINES:-0}" == 1 ]]; then
+  PACKAGES+=(libmujoco-dev)                   # MuJoCo beside the spatial kernels (docs/performance.md)
+fi
 if [[ "${MBFE_WITH_FUZZ:-0}" == 1 ]]; then
   PACKAGES+=(clang libclang-rt-14-dev)        # libFuzzer + sanitizer runtimes
 fi

@@ -1,15 +1,43 @@
 #include "generator/symbolic/spatial_vectors.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 namespace mbfe::gen {
 
 using GiNaC::ex;
 
+namespace {
+
+/// k when `angle` is k quarter turns to double precision (the double nearest
+/// to k pi/2, give or take a few units in the last place), else none. A file
+/// can only write pi/2 as 1.5707963267948966, whose cosine is 6.1e-17, not 0.
+std::optional<long> quarter_turns(double angle) {
+  constexpr double kQuarter = 1.5707963267948966;  // pi/2 rounded to a double
+  constexpr double kUlps = 4;  // k * kQuarter and the file's digits each round once
+  const double k = std::nearbyint(angle / kQuarter);
+  const double tolerance = kUlps * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(angle));
+  if (std::fabs(angle - k * kQuarter) > tolerance) return std::nullopt;
+  return static_cast<long>(k);
+}
+
+}  // namespace
+
 Mat3x rotation_rpy(const ir::Vec3& rpy) {
-  // Exact 1 and 0 for a zero angle; otherwise the decimal of the double.
-  auto cosine = [](double a) { return a == 0.0 ? ex(1) : ex(exact(std::cos(a))); };
-  auto sine = [](double a) { return a == 0.0 ? ex(0) : ex(exact(std::sin(a))); };
+  // Exact 1, 0 and -1 for a whole number of quarter turns (no rotation,
+  // URDF's rpy of 1.5707963267948966 or 3.141592653589793); otherwise the
+  // decimal of the double's cosine and sine.
+  static constexpr int kCosine[4] = {1, 0, -1, 0};
+  auto cosine = [](double a) {
+    const std::optional<long> k = quarter_turns(a);
+    return k ? ex(kCosine[((*k % 4) + 4) % 4]) : ex(exact(std::cos(a)));
+  };
+  auto sine = [](double a) {
+    const std::optional<long> k = quarter_turns(a);
+    return k ? ex(kCosine[((*k % 4) + 7) % 4]) : ex(exact(std::sin(a)));  // sin(a) = cos(a - pi/2)
+  };
   const ex cr = cosine(rpy[0]), sr = sine(rpy[0]);
   const ex cp = cosine(rpy[1]), sp = sine(rpy[1]);
   const ex cy = cosine(rpy[2]), sy = sine(rpy[2]);

@@ -77,8 +77,10 @@ inline Sym3x add(const Sym3x& a, const Sym3x& b) {
 inline Mat3x identity3() { return {{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}}; }
 
 /// The rotation of roll, pitch, yaw (rad) as URDF's rpy: Rz(yaw) Ry(pitch)
-/// Rx(roll), each entry an exact decimal of its double (exactly 0 and 1
-/// where the angles are 0, so a joint without `rotation` costs nothing).
+/// Rx(roll), each entry an exact decimal of its double, and exactly 0, 1 or
+/// -1 where the angles are whole quarter turns to double precision (0, and
+/// the doubles nearest to pi/2, pi, ...), so a joint without `rotation` costs
+/// nothing and a URDF-style quarter turn only permutes axes.
 Mat3x rotation_rpy(const ir::Vec3& rpy);
 
 /// The rotation by an angle with cosine c and sine s about the unit `axis`

@@ -77,6 +77,33 @@ TEST(SpatialEval, DoublePendulum3dMatchesItsEquationsByHand) {
   }
 }
 
+// models/bogie.yaml, by hand: at q = 0 the wheel loads (a quarter of the
+// 6241 kg at each wheel) carry the weight and each axle's spring, preloaded by
+// half the frame's weight, holds its wheelset, so Q = 0; lifting axle 1 by
+// 1 mm against the frame leaves -k 1 mm = -2440 N on its heave. With the
+// frame rolling at w and the wheelsets spinning at W about their axles
+// (principal moment B = 112 kg m^2 about them), each wheelset's angular
+// momentum B W e_y turns at w e_x: the velocity term of the frame's yaw is
+// the gyroscopic moment of both, F_wz = 2 B W w; the mass of the whole is M_xx.
+TEST(SpatialEval, BogieRestsOnItsSpringsAndFeelsTheWheelsetsGyroscopicMoment) {
+  constexpr double kMass = 2615 + 2 * 1813, kStiffness = 2.44e6, kSpinInertia = 112;
+  constexpr double kWheelLoad = kMass * 9.81 / 4;
+  const double roll = 0.1, spin = 20 / 0.46, lift = 1e-3;
+  const std::vector<double> rest{0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  const auto Q0 = eval("models/bogie.yaml", rest, std::vector<double>(12, 0.0)).at("Q").get<std::vector<double>>();
+  for (double q : Q0) EXPECT_LT(std::fabs(q), 1e-12 * kWheelLoad);
+  std::vector<double> lifted = rest;
+  lifted[7] = lift;  // axle1_heave
+  const std::vector<double> v{20, 0, 0.05, roll, 0, 0, 0, 0, spin, 0, 0, spin};
+  const nlohmann::json out = eval("models/bogie.yaml", lifted, v);
+  const auto F = out.at("F").get<std::vector<double>>();
+  const auto Q = out.at("Q").get<std::vector<double>>();
+  const auto M = out.at("M").get<std::vector<std::vector<double>>>();
+  EXPECT_NEAR(Q[6], -kStiffness * lift, kClosedFormTol * kWheelLoad);
+  EXPECT_NEAR(F[5], 2 * kSpinInertia * spin * roll, kClosedFormTol * 1e3);
+  EXPECT_DOUBLE_EQ(M[0][0], kMass);
+}
+
 TEST(SpatialEval, ShippedLoopsAreClosedAtTheirInitialStates) {
   struct Case {
     const char* model;
