@@ -19,7 +19,7 @@ namespace mbfe::tool {
 
 namespace {
 
-constexpr const char* kHelp = R"(Usage: mbfe advise MODEL.yaml --tolerance TOL [--steps N]
+constexpr const char* kHelp = R"(Usage: mbfe advise MODEL.yaml --tolerance TOL [--steps N] [--set PATH=VALUE]
 
 Chooses, for every beam with an adjustment block, the lowest omega_limit
 whose accuracy estimate (the largest relative change the adjustment makes in
@@ -36,6 +36,12 @@ of N timed steps (default 200) times the steps to t_end.
 Options:
   --tolerance TOL   the largest estimate allowed, relative (0 < TOL < 1), e.g. 0.01
   --steps N         steps timed per integrator (default 200)
+  --set PATH=VALUE  replace a value of the model file first (repeatable; as
+                    mbfe simulate --set)
+
+A limit is printed rounded up to four digits, and the rounded value is the one
+the estimate was checked at: copied into the model file as omega_limit, it
+gives the same estimate.
 
 Exit status: 0 done; 2 bad input (no adjustment block, a TOL outside (0, 1),
 a beam whose limit cannot be chosen: file:line:col at its omega_limit).
@@ -71,7 +77,7 @@ std::string seconds(double s) {
 }  // namespace
 
 int cmd_advise(const Args& args) {
-  const ParsedArgs parsed(args, {"tolerance", "steps"}, {"help", "quiet"});
+  const ParsedArgs parsed(args, {"tolerance", "steps", "set"}, {"help", "quiet"});
   if (parsed.has("help")) {
     std::cout << kHelp;
     return 0;
@@ -86,6 +92,7 @@ int cmd_advise(const Args& args) {
 
   LoadOptions load;
   load.quiet = parsed.has("quiet");
+  load.overrides = model_overrides(parsed);
   const Model given = Model::load(parsed.positional()[0], load);
   ir::Model ir = given.ir();
   bool any = false;

@@ -26,7 +26,7 @@ namespace mbfe::tool {
 
 namespace {
 
-constexpr const char* kHelp = R"(Usage: mbfe stability MODEL.yaml [--json]
+constexpr const char* kHelp = R"(Usage: mbfe stability MODEL.yaml [--set PATH=VALUE] [--json]
 
 The largest stable step of each integrator, from the eigenvalues of the state
 matrix (eq (28)) and each method's region of absolute stability, for the
@@ -63,12 +63,15 @@ Options:
            "adjusted": {...}} (steps in s; the strings "unconditional" and
            "none" where they apply; "adjusted" is null when no beam has an
            adjustment block)
+  --set PATH=VALUE  replace a value of the model file first (repeatable; as
+           mbfe simulate --set)
 
 Example:
   mbfe stability models/paper_beam.yaml
   mbfe stability models/paper_beam.yaml --json
   mbfe stability models/paper_platform.yaml
   mbfe stability models/double_pendulum.yaml
+  mbfe stability models/bridge_moving_mass.yaml --set beams.deck.adjustment.omega_limit=800
 )";
 
 nlohmann::json limits_json(const std::vector<runtime::StepLimitRow>& rows, bool adjusted) {
@@ -91,7 +94,7 @@ std::string cell(const runtime::StepLimit& lim) {
 }  // namespace
 
 int cmd_stability(const Args& args) {
-  const ParsedArgs parsed(args, {}, {"json", "help"});
+  const ParsedArgs parsed(args, {"set"}, {"json", "help"});
   if (parsed.has("help")) {
     std::cout << kHelp;
     return 0;
@@ -100,7 +103,9 @@ int cmd_stability(const Args& args) {
     throw UsageError("expected one MODEL.yaml, got " + std::to_string(parsed.positional().size()) +
                      " arguments (see --help)");
   const std::string& path = parsed.positional()[0];
-  const Model model = Model::load(path);
+  LoadOptions load;
+  load.overrides = model_overrides(parsed);
+  const Model model = Model::load(path, load);
   const runtime::ModelKind kind = model.kind();
   const bool coupled = kind == runtime::ModelKind::kCoupled;
   const bool rigid = kind == runtime::ModelKind::kRigid;

@@ -155,6 +155,17 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
   return out;
 }
 
+namespace {
+
+/// `x` rounded up to four significant digits (459.41... -> 459.5), as limits are printed.
+double readable(double x) {
+  if (!(x > 0.0) || !std::isfinite(x)) return x;
+  const double unit = std::pow(10.0, std::floor(std::log10(x)) - 3.0);
+  return std::ceil(x / unit) * unit;
+}
+
+}  // namespace
+
 double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAnalysisOptions& options) {
   const ir::Beam& given = model.beams.at(beam);
   const auto where = [&]() {
@@ -217,13 +228,16 @@ double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAn
     }
     pass = omega;
   }
-  if (fail == 0.0) return pass;  // every limit down to half the lowest mode meets it
+  if (fail == 0.0) return readable(pass);  // every limit down to half the lowest mode meets it
   constexpr int kBisections = 40;
   for (int k = 0; k < kBisections; ++k) {
     const double mid = std::sqrt(pass * fail);
     (largest(mid) > tolerance ? fail : pass) = mid;
   }
-  return pass;
+  // The bisection ends just above a mode's fastest root, where the estimate
+  // jumps: the limit a user reads and copies must be on the passing side.
+  const double shown = readable(pass);
+  return largest(shown) <= tolerance ? shown : pass;
 }
 
 std::string adjustment_notice(const AdjustmentEstimate& estimate, const ir::Model& model) {
