@@ -26,6 +26,7 @@
 #include "generator/emit/generate_solver.h"
 #include "generator_fingerprint.h"
 #include "ir/coordinate_layout.h"
+#include "api/model_abi_header.h"
 #include "jit_config.h"
 
 namespace mbfe {
@@ -306,9 +307,10 @@ double build_entry(int cache, const fs::path& cache_path, const std::string& ent
       throw std::runtime_error(staging.string() + ": cannot open the build folder: " + std::strerror(errno));
     require_private(st, staging.string(), "solver build folder");
     for (const auto& file : sources.files) write_file_atomically((staging / file.name).string(), file.text);
+    write_file_atomically((staging / "mbfe_model_abi.h").string(), internal::kModelAbiHeader);
     const std::string command = compiler + " " + MBFE_JIT_FLAGS +
-                                " -std=c++17 -shared -fPIC -DMBFE_SHARED_ENTRY -I" +
-                                shell_quote(MBFE_JIT_ABI_INCLUDE) + " " +
+                                " -std=c++17 -shared -fPIC -DMBFE_SHARED_ENTRY -I" + shell_quote(staging.string()) +
+                                " " +
                                 shell_quote((staging / (want.model + ".cpp")).string()) + " -o " +
                                 shell_quote((staging / kLibraryName).string());
     const auto start = std::chrono::steady_clock::now();
@@ -365,6 +367,7 @@ LoadedSolver load_solver(const ir::Model& model, bool quiet, bool by_sources) {
   } else {
     sources = gen::generate_solver(model);
     for (const auto& file : sources->files) key_material += file.name + "\n" + file.text;
+    key_material += std::string("mbfe_model_abi.h\n") + internal::kModelAbiHeader;
   }
   Identity want;
   want.key = frontend::sha256_hex(key_material);
