@@ -13,6 +13,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev  # tests and benchmarks
   gnuplot-nox                                 # pictures (mbfe plot, mbfe modal --plot)
   python3-dev pybind11-dev python3-numpy      # the Python module (docs/python.md)
+  python3-venv python3-setuptools python3-wheel  # pip install . into a virtualenv (docs/python.md)
   python3-matplotlib                          # its example's picture (examples/python/)
   python3-vtk9 xvfb xauth                     # reading and rendering the animation in tests (docs/animation.md)
   python3-sympy                               # the SymPy oracle of the spatial kernels (tests/generator/)
