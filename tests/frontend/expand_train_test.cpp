@@ -204,6 +204,27 @@ TEST(ExpandTrain, VehiclesMatchTheHandWrittenTwoAxleModel) {
   EXPECT_TRUE(train.initial.static_start);
 }
 
+// Unequal axles: the body's mass and centre are what statics asks for each
+// wheel to carry its axle's load: moments about the leading axle,
+// (P2 - m g) a = (P1 + P2 - 2 m g) c.
+TEST(ExpandTrain, VehicleBodyBalancesUnequalAxleLoads) {
+  const double g = 9.81, m = 800.0, p1 = 1.2e5, p2 = 0.8e5, a = 10.0;
+  const Model model = parse_model_text(
+      std::string(kBridge) + "gravity: [0, -9.81]\n"
+          "train:\n  speed: 10\n  front: 12.0\n  as: vehicles\n"
+          "  vehicles: [{axles: [2.0, 12.0], loads: [1.2e5, 0.8e5]}]\n"
+          "  suspension: {wheel_mass: 800, inertia: 2.0e5, stiffness: 1.0e6, height: 1.5, contact: {stiffness: 1.0e9}}\n",
+      "x.yaml");
+  const int body = body_named(model, "train_v1");
+  ASSERT_GE(body, 0);
+  const double centre = a * (p2 - m * g) / (p1 + p2 - 2.0 * m * g);
+  EXPECT_NEAR(model.bodies[body].mass, (p1 + p2) / g - 2.0 * m, 1e-9);
+  EXPECT_NEAR(rest_position(model, body)[0], 12.0 - centre, kPositionTol);
+  EXPECT_NEAR(rest_position(model, body)[1], 1.5, kPositionTol);
+  EXPECT_NEAR(rest_position(model, body_named(model, "train_v1_w2"))[0], 12.0 - a, kPositionTol);
+  EXPECT_NEAR(rest_position(model, body_named(model, "train_v1_w2"))[1], 0.0, kPositionTol);
+}
+
 TEST(ExpandTrain, ErrorsPointIntoTheFile) {
   const std::string bridge = kBridge;
   EXPECT_EQ(error_of(bridge + "train: {hslm: A11, speed: 80}\n"),
