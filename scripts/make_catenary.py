@@ -72,7 +72,7 @@ def pantograph_text(pan, start_text, v, suffix, static_force, speed_text):
     motion = "%s + %s*t" % (start_text, speed_text) if v != 0 else "0.0*t"
     b = []
     w = b.append
-    w("  - name: %-20s# driven along the line" % c)
+    w("  - name: %-20s# %s" % (c, "driven along the line" if v != 0 else "standing still: a rigid support"))
     w("    parent: ground")
     w("    joint: {type: prismatic, axis: [1, 0], at: [0, 0], motion: \"%s\"}" % motion)
     w("    mass: 0")
