@@ -79,7 +79,8 @@ Suspension read_suspension(const MapView& view) {
 /// The list under `field` as numbers, any length from 1.
 std::vector<double> number_list(const MapView& view, const Field& field, const char* shape) {
   const std::size_t count = view.list(field).size();
-  if (count == 0) view.fail(field.value_loc, view.prefixed(view.what(field) + ": expected " + shape + ", got an empty list"));
+  if (count == 0)
+    view.fail(field.value_loc, view.prefixed(view.what(field) + ": expected " + shape + ", got an empty list"));
   return view.numbers(field, count, shape);
 }
 
@@ -108,7 +109,8 @@ void read_vehicle(const MapView& view, const Suspension& train_suspension, doubl
     loads = view.numbers(*loads_field, axles.size(), "one load per axle (N)");
     for (const double p : loads)
       if (!(p > 0.0))
-        view.fail(loads_field->value_loc, view.prefixed("loads: every axle load must be > 0 (got " + format_number(p) + ")"));
+        view.fail(loads_field->value_loc,
+                  view.prefixed("loads: every axle load must be > 0 (got " + format_number(p) + ")"));
   } else {
     loads.assign(axles.size(), view.positive(*load_field));
   }
@@ -116,17 +118,17 @@ void read_vehicle(const MapView& view, const Suspension& train_suspension, doubl
   if (const Field* f = view.find("length")) {
     length = view.positive(*f);
     if (length < axles.back()) {
-      view.fail(f->value_loc, view.prefixed("length " + format_number(length) +
-                                            " m is shorter than the vehicle's last axle at " +
-                                            format_number(axles.back()) + " m"));
+      view.fail(f->value_loc,
+                view.prefixed("length " + format_number(length) + " m is shorter than the vehicle's last axle at " +
+                              format_number(axles.back()) + " m"));
     }
   }
   long long count = 1;
   if (const Field* f = view.find("count")) {
     count = view.whole_number(*f);
     if (count < 1 || count > kMaxVehicleCount)
-      view.fail(f->value_loc, view.prefixed("count must be from 1 to " + std::to_string(kMaxVehicleCount) +
-                                            " (got " + std::to_string(count) + ")"));
+      view.fail(f->value_loc, view.prefixed("count must be from 1 to " + std::to_string(kMaxVehicleCount) + " (got " +
+                                            std::to_string(count) + ")"));
   }
   Suspension suspension = train_suspension;
   if (const Field* f = view.find("suspension")) suspension = read_suspension(view.sub(*f));
@@ -163,7 +165,8 @@ Train read_train(const MapView& view, const std::string& file, std::size_t max_n
   if (const Field* on = view.find("on")) {
     train.beams_loc = on->value_loc;
     const std::vector<YAML::Node> items = view.list(*on);
-    if (items.empty()) view.fail(on->value_loc, view.prefixed("train.on: expected a list of beam names, got an empty list"));
+    if (items.empty())
+      view.fail(on->value_loc, view.prefixed("train.on: expected a list of beam names, got an empty list"));
     for (std::size_t i = 0; i < items.size(); ++i) {
       Field item{"on[" + std::to_string(i) + "]", {}, items[i], location_of(items[i]), location_of(items[i])};
       if (item.value_loc.line == 0) item.value_loc = item.key_loc = on->value_loc;
@@ -184,8 +187,9 @@ Train read_train(const MapView& view, const std::string& file, std::size_t max_n
     const std::string which = view.text(*hslm);
     const HslmTrain* table = find_hslm_train(which);
     if (!table) {
-      view.fail(hslm->value_loc, view.prefixed("train.hslm: expected one of A1, A2, ..., A10 (EN 1991-2 HSLM-A), got '" +
-                                               shown(which) + "'"));
+      view.fail(
+          hslm->value_loc,
+          view.prefixed("train.hslm: expected one of A1, A2, ..., A10 (EN 1991-2 HSLM-A), got '" + shown(which) + "'"));
     }
     train.hslm = true;
     train.hslm_loc = hslm->value_loc;
@@ -197,12 +201,12 @@ Train read_train(const MapView& view, const std::string& file, std::size_t max_n
     return train;
   }
   const std::vector<YAML::Node> items = view.list(*vehicles);
-  if (items.empty()) view.fail(vehicles->value_loc, view.prefixed("train.vehicles: expected a list of vehicles, got an empty list"));
+  if (items.empty())
+    view.fail(vehicles->value_loc, view.prefixed("train.vehicles: expected a list of vehicles, got an empty list"));
   double offset = 0.0;
   long axle_count = 0;
   for (std::size_t i = 0; i < items.size(); ++i) {
-    const MapView vehicle(file, items[i], "train: vehicle #" + std::to_string(i + 1), "",
-                          vehicles->value_loc);
+    const MapView vehicle(file, items[i], "train: vehicle #" + std::to_string(i + 1), "", vehicles->value_loc);
     read_vehicle(vehicle, train_suspension, offset, train, axle_count);
   }
   // Positions from the leading axle.
@@ -246,8 +250,13 @@ class Expander {
  public:
   Expander(YAML::Node root, std::string file, std::size_t max_name_length, const MapView& top,
            const MapView& train_view, const Train& train)
-      : file_(std::move(file)), max_name_length_(max_name_length), root_(root), top_(top), view_(train_view),
-        train_(train), taken_(names_in_use(root)) {}
+      : file_(std::move(file)),
+        max_name_length_(max_name_length),
+        root_(root),
+        top_(top),
+        view_(train_view),
+        train_(train),
+        taken_(names_in_use(root)) {}
 
   void run() {
     find_beams();
@@ -262,10 +271,9 @@ class Expander {
   /// `name`, refused when the file already uses it.
   std::string fresh(const std::string& name) const {
     if (const auto it = taken_.find(name); it != taken_.end()) {
-      view_.fail(train_.name_loc, view_.prefixed("the train generates the name '" + name +
-                                                  "', which the file already uses at line " +
-                                                  std::to_string(it->second) +
-                                                  "; give the train another train.name"));
+      view_.fail(train_.name_loc,
+                 view_.prefixed("the train generates the name '" + name + "', which the file already uses at line " +
+                                std::to_string(it->second) + "; give the train another train.name"));
     }
     return name;
   }
@@ -289,7 +297,8 @@ class Expander {
           if (beam.number(*angle) != 0.0 && runs_on(track.name)) {
             beam.fail(angle->value_loc,
                       beam.prefixed("angle: a train runs along the ground x axis; the beams it runs on need angle 0 "
-                                    "(got " + format_number(beam.number(*angle)) + ")"));
+                                    "(got " +
+                                    format_number(beam.number(*angle)) + ")"));
           }
         }
         all.push_back(track);
@@ -305,7 +314,9 @@ class Expander {
             beams_.push_back(b);
             found = true;
           }
-        if (!found) view_.fail(train_.beam_locs[i], view_.prefixed("train.on: the model has no beam '" + shown(train_.beams[i]) + "'"));
+        if (!found)
+          view_.fail(train_.beam_locs[i],
+                     view_.prefixed("train.on: the model has no beam '" + shown(train_.beams[i]) + "'"));
       }
     }
     if (beams_.empty()) view_.fail(view_.loc(), view_.prefixed("train: the model has no beam for the train to run on"));
@@ -384,8 +395,9 @@ class Expander {
                                                " needs a suspension: (wheel_mass, inertia, stiffness, contact)"));
       }
       if (vehicle.axles.size() < 2) {
-        view_.fail(vehicle.loc, view_.prefixed("train.as: vehicles: vehicle #" + std::to_string(k + 1) +
-                                               " has one axle, which cannot hold its body's pitch; give it two or more"));
+        view_.fail(vehicle.loc,
+                   view_.prefixed("train.as: vehicles: vehicle #" + std::to_string(k + 1) +
+                                  " has one axle, which cannot hold its body's pitch; give it two or more"));
       }
       // The body carries each axle's load less its wheel's weight; its
       // centre of mass is where those loads balance.
@@ -393,10 +405,10 @@ class Expander {
       for (const TrainAxle& a : vehicle.axles) {
         const double share = a.load - s.wheel_mass * g;
         if (!(share > 0.0)) {
-          view_.fail(vehicle.loc, view_.prefixed("vehicle #" + std::to_string(k + 1) + ": an axle load of " +
-                                                 format_number(a.load) + " N does not carry a wheel of " +
-                                                 format_number(s.wheel_mass) + " kg (" +
-                                                 format_number(s.wheel_mass * g) + " N)"));
+          view_.fail(vehicle.loc,
+                     view_.prefixed("vehicle #" + std::to_string(k + 1) + ": an axle load of " + format_number(a.load) +
+                                    " N does not carry a wheel of " + format_number(s.wheel_mass) + " kg (" +
+                                    format_number(s.wheel_mass * g) + " N)"));
         }
         body_weight += share;
         moment += share * a.position;
@@ -420,7 +432,8 @@ class Expander {
       }
       for (std::size_t j = 0; j < vehicle.axles.size(); ++j) {
         const std::string wheel = fresh(prefix + "_w" + std::to_string(j + 1));
-        bodies.push_back(slide(wheel, body_name, {centre - vehicle.axles[j].position, -s.height}, s.wheel_mass, 0.0, true));
+        bodies.push_back(
+            slide(wheel, body_name, {centre - vehicle.axles[j].position, -s.height}, s.wheel_mass, 0.0, true));
         YAML::Node spring(YAML::NodeType::Map);
         spring["name"] = fresh(prefix + "_s" + std::to_string(j + 1));
         spring["type"] = "spring_damper";
@@ -473,8 +486,7 @@ class Expander {
     if (list && !list.IsNull()) {
       if (!list.IsSequence()) {
         const Field* field = top_.find(key);
-        top_.fail(field ? field->value_loc : top_.loc(),
-                  std::string(key) + ": expected a list, got " + describe(list));
+        top_.fail(field ? field->value_loc : top_.loc(), std::string(key) + ": expected a list, got " + describe(list));
       }
       return list;
     }
@@ -499,8 +511,8 @@ SourceLoc expand_train(YAML::Node root, const std::string& file, std::size_t max
   if (!root.IsMap() || !root["train"]) return {};
   const MapView top(file, root, "", "", SourceLoc{1, 1});
   const Field& field = top.require("train");
-  if (const Field* dimension = top.find("dimension"); dimension && dimension->value.IsScalar() &&
-                                                      dimension->value.Scalar() == "3") {
+  if (const Field* dimension = top.find("dimension");
+      dimension && dimension->value.IsScalar() && dimension->value.Scalar() == "3") {
     top.fail(field.key_loc, "train: trains run on the beams of planar models; this model is spatial (dimension: 3)");
   }
   const MapView view = top.sub(field);

@@ -27,7 +27,6 @@ ir::SourceLoc expand_train(YAML::Node root, const std::string& file, std::size_t
 
 /// The axles of the train described by the `train:` map `train` (leading axle
 /// at position 0), for tests and tools. @throws ir::ModelError as above.
-std::vector<TrainAxle> train_axles(const YAML::Node& train, const std::string& file,
-                                   std::size_t max_name_length);
+std::vector<TrainAxle> train_axles(const YAML::Node& train, const std::string& file, std::size_t max_name_length);
 
 }  // namespace mbfe::frontend

@@ -10,10 +10,10 @@ namespace mbfe::frontend {
 namespace {
 
 // Figure 6.12: the parts every Universal Train shares (m).
-constexpr double kPowerCarBogieAxles = 3.0;      // axle spacing of a power car's bogie
-constexpr double kPowerCarBogieCentres = 14.0;   // 3 + 11 + 3 - 3: bogie centre to bogie centre
-constexpr double kPowerCarToEndCoach = 3.525;    // last power car axle to the end coach's first
-constexpr double kEndCoachBogieAxles = 3.0;      // axle spacing of an end coach's own bogie
+constexpr double kPowerCarBogieAxles = 3.0;     // axle spacing of a power car's bogie
+constexpr double kPowerCarBogieCentres = 14.0;  // 3 + 11 + 3 - 3: bogie centre to bogie centre
+constexpr double kPowerCarToEndCoach = 3.525;   // last power car axle to the end coach's first
+constexpr double kEndCoachBogieAxles = 3.0;     // axle spacing of an end coach's own bogie
 
 constexpr double kKiloNewton = 1000.0;
 

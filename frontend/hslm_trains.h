@@ -17,11 +17,11 @@ struct TrainAxle {
 
 /// One row of the table of Universal Trains (EN 1991-2:2003, Table 6.3).
 struct HslmTrain {
-  const char* name;            // "A1" .. "A10"
-  int intermediate_coaches;    // N
-  double coach_length;         // D, m: the spacing of the articulated bogies
-  double bogie_axle_spacing;   // d, m: the axle spacing of an articulated bogie
-  double axle_load;            // P, N: every axle of the train
+  const char* name;           // "A1" .. "A10"
+  int intermediate_coaches;   // N
+  double coach_length;        // D, m: the spacing of the articulated bogies
+  double bogie_axle_spacing;  // d, m: the axle spacing of an articulated bogie
+  double axle_load;           // P, N: every axle of the train
 };
 
 /// The ten rows, A1 first.

@@ -60,8 +60,8 @@ TEST(Train, MovingForcesSuperpose) {
   std::vector<double> sum_acc(train.acc.size(), 0.0), sum_w(train.w.size(), 0.0);
   for (std::size_t i = 0; i < behind.size(); ++i) {
     char line[160];
-    std::snprintf(line, sizeof line, "    loads: [{type: moving, value: %.17g, speed: 25.0, start: %.17g}]\n",
-                  -load[i], 1.0 - behind[i] - 4.0);
+    std::snprintf(line, sizeof line, "    loads: [{type: moving, value: %.17g, speed: 25.0, start: %.17g}]\n", -load[i],
+                  1.0 - behind[i] - 4.0);
     const Probes one = run(std::string("model: axle\n") + kBridge + line);
     ASSERT_EQ(one.acc.size(), train.acc.size());
     for (std::size_t k = 0; k < one.acc.size(); ++k) {

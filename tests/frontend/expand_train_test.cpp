@@ -102,12 +102,11 @@ TEST(ExpandTrain, HslmBecomesOneMovingLoadPerAxle) {
 }
 
 TEST(ExpandTrain, VehiclesFollowEachOtherByTheirLength) {
-  const Model model = parse_model_text(
-      std::string(kBridge) +
-          "train:\n  name: freight\n  speed: 20\n  vehicles:\n"
-          "    - {axles: [1.5, 6.5], loads: [1.0e5, 1.2e5], length: 9.0, count: 2}\n"
-          "    - {axles: [2.0, 4.0, 6.0], load: 8.0e4}\n",
-      "x.yaml");
+  const Model model = parse_model_text(std::string(kBridge) +
+                                           "train:\n  name: freight\n  speed: 20\n  vehicles:\n"
+                                           "    - {axles: [1.5, 6.5], loads: [1.0e5, 1.2e5], length: 9.0, count: 2}\n"
+                                           "    - {axles: [2.0, 4.0, 6.0], load: 8.0e4}\n",
+                                       "x.yaml");
   // Vehicle fronts at 0, 9, 18; the third's length defaults to 2 + 6.
   const std::vector<double> at = {1.5, 6.5, 10.5, 15.5, 20.0, 22.0, 24.0};
   const std::vector<double> load = {1.0e5, 1.2e5, 1.0e5, 1.2e5, 8.0e4, 8.0e4, 8.0e4};
@@ -150,16 +149,20 @@ TEST(ExpandTrain, VehiclesMatchTheHandWrittenTwoAxleModel) {
     bool skipping = false;
     while (std::getline(in, line)) {
       const bool top = !line.empty() && line[0] != ' ' && line[0] != '#';
-      if (top) skipping = line.rfind("bodies:", 0) == 0 || line.rfind("loads:", 0) == 0 || line.rfind("contacts:", 0) == 0;
+      if (top)
+        skipping = line.rfind("bodies:", 0) == 0 || line.rfind("loads:", 0) == 0 || line.rfind("contacts:", 0) == 0;
       if (!skipping) text += line + "\n";
     }
   }
   const double g = 9.81;
   const double axle = (8000.0 / 2.0 + 500.0) * g;  // N, each axle
-  text += "train:\n  name: car\n  speed: 20.0\n  front: -3.0\n  as: vehicles\n"
-          "  vehicles:\n    - {axles: [1.0, 5.0], load: " + std::to_string(axle) + ", length: 6.0}\n"
-          "  suspension: {wheel_mass: 500.0, inertia: 1.2e4, stiffness: 4.0e5, damping: 1.0e4, height: 1.0,\n"
-          "               contact: {stiffness: 2.0e6, damping: 2.0e3}}\n";
+  text +=
+      "train:\n  name: car\n  speed: 20.0\n  front: -3.0\n  as: vehicles\n"
+      "  vehicles:\n    - {axles: [1.0, 5.0], load: " +
+      std::to_string(axle) +
+      ", length: 6.0}\n"
+      "  suspension: {wheel_mass: 500.0, inertia: 1.2e4, stiffness: 4.0e5, damping: 1.0e4, height: 1.0,\n"
+      "               contact: {stiffness: 2.0e6, damping: 2.0e3}}\n";
   const Model train = parse_model_text(text, "x.yaml");
 
   ASSERT_EQ(train.bodies.size(), hand.bodies.size());
@@ -168,9 +171,11 @@ TEST(ExpandTrain, VehiclesMatchTheHandWrittenTwoAxleModel) {
   // The carriage and the bounce slide stand elsewhere by design (the file's
   // carriage is 2 m behind the body's centre); the bodies that carry mass
   // and their points stand where the file puts them.
-  const std::vector<std::pair<std::string, std::string>> same = {
-      {"car_carriage", "carriage"}, {"car_v1_bounce", "bounce"}, {"car_v1", "pitch"},
-      {"car_v1_w1", "front_wheel"}, {"car_v1_w2", "rear_wheel"}};
+  const std::vector<std::pair<std::string, std::string>> same = {{"car_carriage", "carriage"},
+                                                                 {"car_v1_bounce", "bounce"},
+                                                                 {"car_v1", "pitch"},
+                                                                 {"car_v1_w1", "front_wheel"},
+                                                                 {"car_v1_w2", "rear_wheel"}};
   const int first_placed = 2;
   for (std::size_t k = 0; k < same.size(); ++k) {
     const auto& [mine, theirs] = same[k];
@@ -209,12 +214,13 @@ TEST(ExpandTrain, VehiclesMatchTheHandWrittenTwoAxleModel) {
 // (P2 - m g) a = (P1 + P2 - 2 m g) c.
 TEST(ExpandTrain, VehicleBodyBalancesUnequalAxleLoads) {
   const double g = 9.81, m = 800.0, p1 = 1.2e5, p2 = 0.8e5, a = 10.0;
-  const Model model = parse_model_text(
-      std::string(kBridge) + "gravity: [0, -9.81]\n"
-          "train:\n  speed: 10\n  front: 12.0\n  as: vehicles\n"
-          "  vehicles: [{axles: [2.0, 12.0], loads: [1.2e5, 0.8e5]}]\n"
-          "  suspension: {wheel_mass: 800, inertia: 2.0e5, stiffness: 1.0e6, height: 1.5, contact: {stiffness: 1.0e9}}\n",
-      "x.yaml");
+  const Model model = parse_model_text(std::string(kBridge) +
+                                           "gravity: [0, -9.81]\n"
+                                           "train:\n  speed: 10\n  front: 12.0\n  as: vehicles\n"
+                                           "  vehicles: [{axles: [2.0, 12.0], loads: [1.2e5, 0.8e5]}]\n"
+                                           "  suspension: {wheel_mass: 800, inertia: 2.0e5, stiffness: 1.0e6, height: "
+                                           "1.5, contact: {stiffness: 1.0e9}}\n",
+                                       "x.yaml");
   const int body = body_named(model, "train_v1");
   ASSERT_GE(body, 0);
   const double centre = a * (p2 - m * g) / (p1 + p2 - 2.0 * m * g);
