@@ -54,10 +54,8 @@ struct Train {
   SourceLoc as_loc;
   std::vector<std::string> beams;  // empty: every beam
   std::vector<SourceLoc> beam_locs;
-  SourceLoc beams_loc;
   std::vector<Vehicle> vehicles;
   bool hslm = false;
-  SourceLoc hslm_loc;
 };
 
 Suspension read_suspension(const MapView& view) {
@@ -163,7 +161,6 @@ Train read_train(const MapView& view, const std::string& file, std::size_t max_n
     train.as_loc = as->value_loc;
   }
   if (const Field* on = view.find("on")) {
-    train.beams_loc = on->value_loc;
     const std::vector<YAML::Node> items = view.list(*on);
     if (items.empty())
       view.fail(on->value_loc, view.prefixed("train.on: expected a list of beam names, got an empty list"));
@@ -192,7 +189,6 @@ Train read_train(const MapView& view, const std::string& file, std::size_t max_n
           view.prefixed("train.hslm: expected one of A1, A2, ..., A10 (EN 1991-2 HSLM-A), got '" + shown(which) + "'"));
     }
     train.hslm = true;
-    train.hslm_loc = hslm->value_loc;
     Vehicle whole;
     whole.loc = hslm->value_loc;
     whole.axles = hslm_axles(*table);
