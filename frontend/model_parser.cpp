@@ -20,7 +20,8 @@ int body_first(const CoordinateLayout& layout, int body, bool velocities) {
 void ModelParser::parse(const YAML::Node& root) {
   const MapView top(file_, root, "", "", SourceLoc{1, 1});
   top.allow({"model", "description", "gravity", "dimension", "bodies", "loads", "beams", "contacts", "links",
-             "constraints", "initial", "simulation"});
+             "constraints", "initial", "simulation",
+             "train"});  // expanded and removed before (frontend/expand_train.h)
   const Field& name = top.require("model");
   model_.name = top.identifier(name, limits_.max_name_length);
   if (const Field* description = top.find("description")) top.text(*description);

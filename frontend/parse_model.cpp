@@ -18,6 +18,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "frontend/expand_train.h"
 #include "frontend/model_overrides.h"
 #include "frontend/model_parser.h"
 #include "frontend/sha256.h"
@@ -79,7 +80,14 @@ Model parse_model_text(const std::string& text, const std::string& display_path,
     model.source_path = display_path;
     model.source_sha256 = overridden_sha256(text, overrides);
     try {
-      ModelParser(display_path, limits, model).parse(root);
+      const SourceLoc train = expand_train(root, display_path, limits.max_name_length);
+      try {
+        ModelParser(display_path, limits, model).parse(root);
+      } catch (const ModelError& error) {
+        // What `train:` generated has no position of its own.
+        if (error.loc().line > 0 || train.line == 0) throw;
+        throw ModelError(display_path, train, error.message() + " (in what train: generated)");
+      }
     } catch (const ModelError& error) {
       throw blame_override(error, applied);
     }

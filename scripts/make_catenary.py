@@ -2,6 +2,8 @@
 """Writes pantograph-catenary model files from a parameter table.
 
     scripts/make_catenary.py [TABLE.json] [--spans N] [--speed KMH] [--name NAME] [-o MODEL.yaml]
+                             [--pantograph 2mass|3mass] [--pantographs 1|2] [--distance M]
+                             [--pantograph-only]
 
 TABLE defaults to models/catenary/en50318_2002.json (what each value is and
 where it comes from: docs/validation-en50318.md). Without -o, writes the
@@ -23,6 +25,17 @@ The model (docs/catenary.md):
     frame), weightless (gravity cancelled by a force on each), the static
     force pushing the frame up; the head's strip presses the contact wire
     from below (`slider_spring`, `side: below`, unilateral);
+  - or, with --pantograph 3mass, the three-mass pantograph of
+    models/catenary/pantograph_3mass.json (head m1 on k1, c1 over the upper
+    frame m2; m2 on k2, c2 over the lower frame m3; m3 on k3, c3 over the
+    carriage; the static force pushes the lower frame up);
+  - with --pantographs 2, a second pantograph --distance metres behind the
+    first (its bodies, loads and contact end in 2); the trailing one starts
+    where a single one would, the run ends when the leading one reaches the
+    last span's end less the start;
+  - with --pantograph-only, the pantograph(s) alone on a carriage standing
+    still (no wires, no contact): a rigid support, for checking a
+    pantograph's own modes;
   - a static start: wires, droppers and pantograph in equilibrium at t = 0;
   - the modal adjustment of damping (the table's `adjustment`: cap, policy
     (`cap` unless the table names another: at the shipped step its EN 50318
@@ -49,7 +62,62 @@ def rayleigh(zeta, f1, f2):
     return 2 * zeta * w1 * w2 / (w1 + w2), 2 * zeta / (w1 + w2)
 
 
-def model_text(p, spans, kmh, name, table_path):
+def pantograph_text(pan, start_text, v, suffix, static_force, speed_text):
+    """The bodies and loads of one pantograph (lines of YAML): a carriage
+    driven from `start_text` at `speed_text` m/s (standing still when v is 0),
+    then the two-mass (m1, m2) or three-mass (m1, m2, m3) chain up to the head,
+    whose point `strip` touches the contact wire. Names end in `suffix`."""
+    g = 9.81
+    c, f, h = "carriage" + suffix, "frame" + suffix, "head" + suffix
+    motion = "%s + %s*t" % (start_text, speed_text) if v != 0 else "0.0*t"
+    b = []
+    w = b.append
+    w("  - name: %-20s# %s" % (c, "driven along the line" if v != 0 else "standing still: a rigid support"))
+    w("    parent: ground")
+    w("    joint: {type: prismatic, axis: [1, 0], at: [0, 0], motion: \"%s\"}" % motion)
+    w("    mass: 0")
+    w("    inertia: 0")
+    three = "m3" in pan
+    if three:
+        lower = "lower" + suffix
+        w("  - name: %-20s# m3, the lower frame" % lower)
+        w("    parent: %s" % c)
+        w("    joint: {type: prismatic, axis: [0, 1], at: [0, 0]}")
+        w("    mass: %s" % number(pan["m3"]))
+        w("    inertia: 0")
+        w("  - name: %-20s# m2, the upper frame" % f)
+        w("    parent: %s" % lower)
+    else:
+        w("  - name: %-20s# m2" % f)
+        w("    parent: %s" % c)
+    w("    joint: {type: prismatic, axis: [0, 1], at: [0, 0]}")
+    w("    mass: %s" % number(pan["m2"]))
+    w("    inertia: 0")
+    w("  - name: %-20s# m1, its strip touches the contact wire" % h)
+    w("    parent: %s" % f)
+    w("    joint: {type: prismatic, axis: [0, 1], at: [0, 0]}")
+    w("    mass: %s" % number(pan["m1"]))
+    w("    inertia: 0")
+    w("    points: {strip: [0, 0]}")
+    loads = []
+    w = loads.append
+    if three:
+        w("  - {type: spring_damper, joint: %s, stiffness: %s, damping: %s, rest: 0.0}   # k3, c3" % (lower, number(pan["k3"]), number(pan["c3"])))
+    w("  - {type: spring_damper, joint: %s, stiffness: %s, damping: %s, rest: 0.0}   # k2, c2" % (f, number(pan["k2"]), number(pan["c2"])))
+    w("  - {type: spring_damper, joint: %s, stiffness: %s, damping: %s, rest: 0.0}    # k1, c1" % (h, number(pan["k1"]), number(pan["c1"])))
+    if three:
+        w("  - {type: force, body: %s, value: [0, %s]}   # static force %g N + the lower frame's weight cancelled" % (lower, number(static_force + pan["m3"] * g), static_force))
+        w("  - {type: force, body: %s, value: [0, %s]}   # the upper frame's weight cancelled" % (f, number(pan["m2"] * g)))
+    else:
+        w("  - {type: force, body: %s, value: [0, %s]}   # static force %g N + the frame's weight cancelled" % (f, number(static_force + pan["m2"] * g), static_force))
+    w("  - {type: force, body: %s, value: [0, %s]}    # the head's weight cancelled" % (h, number(pan["m1"] * g)))
+    return b, loads
+
+
+def model_text(p, spans, kmh, name, table_path, pantograph=None, pantographs=1, distance=0.0, only=False):
+    """The model file's text. `pantograph` replaces the table's (a three-mass
+    one has m3); `pantographs` 2 puts a second one `distance` m behind the
+    first; `only` writes the pantograph(s) alone on a standing carriage."""
     L = p["span_length"]
     length = spans * L
     le = p["element_length"]
@@ -63,9 +131,21 @@ def model_text(p, spans, kmh, name, table_path):
     v = kmh / 3.6
     cw, mw = p["contact_wire"], p["messenger"]
     pan, con = p["pantograph"], p["contact"]
+    static_force = pan["static_force"]
+    if pantograph is not None:
+        pan = pantograph
+    kind = "three-mass" if "m3" in pan else "two-mass"
     g = 9.81
     start = p["start"]
-    t_end = (length - 2 * start) / v
+    second = None
+    if pantographs == 2:
+        if not 0.0 < distance < length - 2 * start:
+            sys.exit("make_catenary: --distance must be between 0 and %g m (the line less twice the start)" % (length - 2 * start))
+        second = start
+        start = start + distance
+    t_end = (length - 2 * p["start"] - (distance if second is not None else 0.0)) / v
+    if only:
+        return pantograph_only_text(pan, name, static_force, pantographs, distance)
     out = []
     w = out.append
     w("# Written by scripts/make_catenary.py from %s (%d spans, %g km/h):" % (os.path.relpath(table_path, ROOT), spans, kmh))
@@ -73,32 +153,24 @@ def model_text(p, spans, kmh, name, table_path):
     w("model: %s" % name)
     w("description: >-")
     w("  A simple catenary of %d spans of %g m (messenger and contact wire, droppers, steady arms)" % (spans, L))
-    w("  and a two-mass pantograph running along it at %g km/h, after the EN 50318:2002 reference" % kmh)
-    w("  model as the open literature reproduces it (docs/validation-en50318.md says which values are")
-    w("  sourced and which assumed). Static start; the contact force is force_strip.")
+    if pantograph is None and second is None:
+        w("  and a two-mass pantograph running along it at %g km/h, after the EN 50318:2002 reference" % kmh)
+        w("  model as the open literature reproduces it (docs/validation-en50318.md says which values are")
+        w("  sourced and which assumed). Static start; the contact force is force_strip.")
+    else:
+        w("  and %s %s pantograph%s running along it at %g km/h%s, after the EN 50318:2002 reference"
+          % ("two" if second is not None else "a", kind, "s" if second is not None else "", kmh,
+             (" %g m apart" % distance) if second is not None else ""))
+        w("  catenary as the open literature reproduces it (docs/validation-en50318.md; the pantograph:")
+        w("  docs/catenary.md, \"Pantographs\"). Static start; the contact force is force_strip%s."
+          % (" (leading) and force_strip2 (trailing)" if second is not None else ""))
     w("gravity: [0, -9.81]")
-    w("bodies:")
-    w("  - name: carriage            # driven along the line")
-    w("    parent: ground")
-    w("    joint: {type: prismatic, axis: [1, 0], at: [0, 0], motion: \"%s + %s*t\"}" % (number(start), number(v)))
-    w("    mass: 0")
-    w("    inertia: 0")
-    w("  - name: frame               # m2")
-    w("    parent: carriage")
-    w("    joint: {type: prismatic, axis: [0, 1], at: [0, 0]}")
-    w("    mass: %s" % number(pan["m2"]))
-    w("    inertia: 0")
-    w("  - name: head                # m1, its strip touches the contact wire")
-    w("    parent: frame")
-    w("    joint: {type: prismatic, axis: [0, 1], at: [0, 0]}")
-    w("    mass: %s" % number(pan["m1"]))
-    w("    inertia: 0")
-    w("    points: {strip: [0, 0]}")
-    w("loads:")
-    w("  - {type: spring_damper, joint: frame, stiffness: %s, damping: %s, rest: 0.0}   # k2, c2" % (number(pan["k2"]), number(pan["c2"])))
-    w("  - {type: spring_damper, joint: head, stiffness: %s, damping: %s, rest: 0.0}    # k1, c1" % (number(pan["k1"]), number(pan["c1"])))
-    w("  - {type: force, body: frame, value: [0, %s]}   # static force %g N + the frame's weight cancelled" % (number(pan["static_force"] + pan["m2"] * g), pan["static_force"]))
-    w("  - {type: force, body: head, value: [0, %s]}    # the head's weight cancelled" % number(pan["m1"] * g))
+    bodies, loads = pantograph_text(pan, number(start), v, "", static_force, speed_text=number(v))
+    if second is not None:
+        b2, l2 = pantograph_text(pan, number(second), v, "2", static_force, speed_text=number(v))
+        bodies += b2
+        loads += l2
+    out.extend(["bodies:"] + bodies + ["loads:"] + loads)
     supports = [i * L for i in range(spans + 1)]
     anchor_end = length  # anchors: pinned at both ends of each wire
     adj = p.get("adjustment")
@@ -142,12 +214,36 @@ def model_text(p, spans, kmh, name, table_path):
     w("contacts:")
     w("  - {name: strip, type: slider_spring, body: head, point: strip, beam: contact_wire, stiffness: %s, damping: %s, unilateral: true, side: below}"
       % (number(con["stiffness"]), number(con["damping"])))
+    if second is not None:
+        w("  - {name: strip2, type: slider_spring, body: head2, point: strip, beam: contact_wire, stiffness: %s, damping: %s, unilateral: true, side: below}"
+          % (number(con["stiffness"]), number(con["damping"])))
     w("initial: {static: true}")
     if adjusted:
         w("simulation: {integrator: %s, step: %s, t_end: %s}   # adjusted; the original: --adjust off --integrator generalized_alpha --step %s"
           % (adj["integrator"], number(adj["step"]), number(t_end), number(p["step"])))
     else:
         w("simulation: {integrator: generalized_alpha, step: %s, t_end: %s}" % (number(p["step"]), number(t_end)))
+    return "\n".join(out) + "\n"
+
+
+def pantograph_only_text(pan, name, static_force, pantographs, distance):
+    """The pantograph(s) alone, each on a carriage standing still: no wires,
+    no contact, the static force balanced by the lowest spring."""
+    out = ["# Written by scripts/make_catenary.py --pantograph-only: the pantograph on a rigid support.",
+           "model: %s" % name,
+           "description: >-",
+           "  A %s pantograph (docs/catenary.md, \"Pantographs\") on a carriage standing still:"
+           % ("three-mass" if "m3" in pan else "two-mass"),
+           "  its own modes, without the catenary.",
+           "gravity: [0, -9.81]"]
+    bodies, loads = pantograph_text(pan, "0.0", 0.0, "", static_force, speed_text="0.0")
+    if pantographs == 2:
+        b2, l2 = pantograph_text(pan, "0.0", 0.0, "2", static_force, speed_text="0.0")
+        bodies += b2
+        loads += l2
+    out += ["bodies:"] + bodies + ["loads:"] + loads
+    out.append("initial: {static: true}")
+    out.append("simulation: {integrator: rk4, step: 1.0e-4, t_end: 1.0}")
     return "\n".join(out) + "\n"
 
 
@@ -158,15 +254,34 @@ def main():
     ap.add_argument("--speed", type=float, help="km/h")
     ap.add_argument("--name")
     ap.add_argument("-o", "--out")
+    ap.add_argument("--pantograph", choices=["2mass", "3mass"], default="2mass",
+                    help="2mass: the table's (EN 50318); 3mass: models/catenary/pantograph_3mass.json")
+    ap.add_argument("--pantographs", type=int, choices=[1, 2], default=1, help="one pantograph or two")
+    ap.add_argument("--distance", type=float, default=0.0,
+                    help="m between two pantographs (with --pantographs 2)")
+    ap.add_argument("--pantograph-only", action="store_true",
+                    help="the pantograph(s) alone on a carriage standing still (no catenary)")
     a = ap.parse_args()
     with open(a.table) as f:
         p = json.load(f)
+    if a.pantographs == 2 and not a.distance > 0:
+        ap.error("--pantographs 2 needs --distance M (> 0)")
+    if a.pantographs == 1 and a.distance:
+        ap.error("--distance needs --pantographs 2")
+    pantograph = None
+    if a.pantograph == "3mass":
+        with open(os.path.join(ROOT, "models", "catenary", "pantograph_3mass.json")) as f:
+            pantograph = json.load(f)["pantograph"]
+    custom = pantograph is not None or a.pantographs == 2 or a.pantograph_only
+    if custom and not a.out:
+        ap.error("--pantograph 3mass, --pantographs 2 and --pantograph-only write one model: give -o")
     if a.out:
         spans = a.spans or p["spans"]
         kmh = a.speed or p["speeds_kmh"][0]
         name = a.name or "pantograph_catenary"
         with open(a.out, "w") as f:
-            f.write(model_text(p, spans, kmh, name, a.table))
+            f.write(model_text(p, spans, kmh, name, a.table, pantograph, a.pantographs, a.distance,
+                               a.pantograph_only))
         return
     for kmh in p["speeds_kmh"]:
         path = os.path.join(ROOT, "models", "pantograph_catenary_%d.yaml" % kmh)
