@@ -265,14 +265,7 @@ void CoupledImplicitSystem::factorize(double t, const Eigen::VectorXd& q, const 
     std::vector<ModalBlock> blocks;
     for (std::size_t k = 0; k < structures.size(); ++k) {
       const LowRankStructure& s = *structures[k];
-      ModalBlock blk;
-      blk.row = nb + s.ranges().front().offset;
-      blk.base_factor = &s.base_factor();
-      blk.phi = &s.phi();
-      blk.base_modal = s.base() == LowRankStructure::Base::kMass ? nullptr : &s.base_modal();
-      blk.alpha = terms[k].mu;
-      blk.d = terms[k].d;
-      blocks.push_back(std::move(blk));
+      blocks.push_back(s.modal_block(nb + s.ranges().front().offset, terms[k]));
     }
     try {
       block_solver_.factorize(n, triplets_, std::move(blocks));

@@ -279,14 +279,7 @@ void CoupledTangents::factorize_shifted(double sigma) {
     std::vector<ModalBlock> list;
     for (std::size_t k = 0; k < structures.size(); ++k) {
       const LowRankStructure& s = *structures[k];
-      ModalBlock blk;
-      blk.row = nfb_ + s.ranges().front().offset;
-      blk.base_factor = &s.base_factor();
-      blk.phi = &s.phi();
-      blk.base_modal = s.base() == LowRankStructure::Base::kMass ? nullptr : &s.base_modal();
-      blk.alpha = terms[k].mu;
-      blk.d = terms[k].d;
-      list.push_back(std::move(blk));
+      list.push_back(s.modal_block(nfb_ + s.ranges().front().offset, terms[k]));
     }
     try {
       block_solver_.factorize(nf_, entries, std::move(list));

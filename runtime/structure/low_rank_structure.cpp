@@ -243,6 +243,17 @@ LowRankStructure::Term LowRankStructure::combination(double c_a, double c_v, dou
   return t;
 }
 
+ModalBlock LowRankStructure::modal_block(int row, const Term& term) const {
+  ModalBlock block;
+  block.row = row;
+  block.base_factor = &base_factor();
+  block.phi = &phi();
+  block.base_modal = base() == Base::kMass ? nullptr : &base_modal();
+  block.alpha = term.mu;
+  block.d = term.d;
+  return block;
+}
+
 Eigen::MatrixXd LowRankStructure::mass_times_phi() const { return M_ * Eigen::MatrixXd(phi_); }
 
 Eigen::MatrixXd LowRankStructure::dense(const Term& term) const {

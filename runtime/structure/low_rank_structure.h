@@ -33,6 +33,8 @@
 #include <string>
 #include <vector>
 
+#include "runtime/linalg/modal_block_solver.h"
+
 namespace mbfe::runtime {
 
 class LowRankStructure {
@@ -134,6 +136,10 @@ class LowRankStructure {
 
   /// c_a M_adj + c_v C_adj + c_q K_adj = mu B + U diag(d) U^T: its mu and d.
   Term combination(double c_a, double c_v, double c_q) const;
+  /// `term` as a block of a larger matrix for ModalBlockSolver, its first row
+  /// `row`; it points into this structure, which must outlive the solver's
+  /// use of it. Needs a structure over one range.
+  ModalBlock modal_block(int row, const Term& term) const;
   /// U = M Phi_L, dense n_s x m: the columns of a Woodbury correction
   /// (formed when asked, never kept).
   Eigen::MatrixXd mass_times_phi() const;
