@@ -156,10 +156,12 @@ void VtkAnimation::write_frame(const runtime::OutputRow& row, const std::string&
     if (!points.empty()) {
       std::vector<int> line;
       for (std::size_t p = 0; p < points.size(); ++p) {
-        double xy[2];
-        solver->point_position(row.q.data(), b, static_cast<int>(p), xy);
+        // A spatial model's points are 3D (point_position3); a planar model's lie in z = 0.
+        double xyz[3] = {0.0, 0.0, 0.0};
+        if (solver->point_position3) solver->point_position3(row.q.data(), b, static_cast<int>(p), xyz);
+        else solver->point_position(row.q.data(), b, static_cast<int>(p), xyz);
         line.push_back(static_cast<int>(g.points.size()));
-        g.points.push_back({xy[0], xy[1], 0.0});
+        g.points.push_back({xyz[0], xyz[1], xyz[2]});
         g.w.push_back(0.0);
         g.force.push_back({0.0, 0.0, 0.0});
       }
