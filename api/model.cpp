@@ -32,12 +32,6 @@ struct Model::Shared {
 
 Model Model::make(ir::Model model, const mbfe_model_v1* solver, std::string library, bool compiled_now,
                   const LoadOptions& options) {
-  // Closed loops are generated (mbfe generate) and evaluated (mbfe eval)
-  // only, for now.
-  if (!model.constraints.empty())
-    throw runtime::InvalidInput("model '" + model.name + "' has closed loops (constraints:)" +
-                                ": mbfe generate writes its solver and mbfe eval evaluates it, but the runtime does "
-                                "not simulate or analyse such models yet");
   auto shared = std::make_shared<Shared>();
   shared->kind = runtime::model_kind(model);
   if (!model.bodies.empty()) {

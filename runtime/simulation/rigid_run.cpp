@@ -107,6 +107,7 @@ std::unique_ptr<ModelRun> make_rigid_run(const AssembledModel& model, const Simu
     throw InvalidRequest("adjust", "applies to beam models only ('" + model.ir().name + "' has no beams)");
   if (!request.probes.empty())
     throw InvalidRequest("probes", "apply to beam models only ('" + model.ir().name + "' has no beams)");
+  if (!model.ir().constraints.empty()) return make_loop_run(model, request);
   return std::make_unique<RigidRun>(model, request);
 }
 
