@@ -2,7 +2,8 @@
 // pendulum against its equations of motion written by hand and integrated
 // here by the same RK4, its energy (kinetic from M, potential from the
 // centres of mass placed here) over an undamped run, the CSV layout of
-// mbfe simulate; and a torque-free rigid body on a free joint, whose
+// mbfe simulate, its small swings (the linearisation mbfe stability takes);
+// and a torque-free rigid body on a free joint, whose
 // energy and angular momentum stay constant and whose quaternion stays unit.
 #include <gtest/gtest.h>
 
@@ -122,6 +123,25 @@ TEST(SpatialRigidRun, SimulateWritesTheRigidLayoutAndSidecar) {
   EXPECT_EQ(csv.rows.size(), 51u);
   std::ifstream sidecar(out + ".json");
   EXPECT_TRUE(sidecar.good());
+}
+
+TEST(SpatialRigidRun, DoublePendulum3dLinearisesToItsSmallSwings) {
+  // Hanging straight down (q = 0) the two swings decouple (M12 = 0, and the
+  // gravity stiffnesses are diagonal): omega1^2 = g (m1 a1 + m2 (l1 + a2)) /
+  // M11(0), omega2^2 = g m2 a2 / M22. The linearisation takes central
+  // differences (relative step 1e-6): ~1e-9 relative.
+  constexpr double kLinearizationTol = 1e-6;  // rad/s
+  const DoublePendulum3d p;
+  const double m11 = p.B1 + p.m1 * p.a1 * p.a1 + p.m2 * (p.l1 + p.a2) * (p.l1 + p.a2) + p.B2;
+  const double omega1 = std::sqrt(p.g * (p.m1 * p.a1 + p.m2 * (p.l1 + p.a2)) / m11);
+  const double omega2 = std::sqrt(p.g * p.m2 * p.a2 / (p.A2 + p.m2 * p.a2 * p.a2));
+  const runtime::ModelSpectrum spectrum = Model::load(source_path("models/double_pendulum_3d.yaml")).spectrum(false);
+  EXPECT_TRUE(spectrum.at_equilibrium);
+  ASSERT_EQ(spectrum.full.eigenvalues.size(), 4u);
+  // Sorted by modulus, +imag first in each pair.
+  EXPECT_NEAR(spectrum.full.eigenvalues[0].imag(), omega1, kLinearizationTol);
+  EXPECT_NEAR(spectrum.full.eigenvalues[2].imag(), omega2, kLinearizationTol);
+  EXPECT_NEAR(spectrum.full.eigenvalues[2].real(), 0.0, kLinearizationTol);
 }
 
 // A torque-free rigid body on a free joint (no gravity): centre of mass at
