@@ -123,7 +123,7 @@ class LoopRun final : public ModelRun {
 
 std::unique_ptr<ModelRun> make_loop_run(const AssembledModel& model, const SimulationRequest& request) {
   if (request.static_start.value_or(model.ir().initial.static_start))
-    throw InvalidRequest("static_start", "a static start of a model with closed loops is not available yet ('" +
+    throw InvalidRequest("static_start", "static is not available for a model with closed loops yet ('" +
                                              model.ir().name + "'); start from `initial:` as written");
   return std::make_unique<LoopRun>(model, request);
 }
