@@ -32,13 +32,6 @@ struct Model::Shared {
 
 Model Model::make(ir::Model model, const mbfe_model_v1* solver, std::string library, bool compiled_now,
                   const LoadOptions& options) {
-  // The runtime takes planar trees; spatial models and closed loops are
-  // generated (mbfe generate) and evaluated (mbfe eval) only, for now.
-  if (model.dimension == 3 || !model.constraints.empty())
-    throw runtime::InvalidInput("model '" + model.name + "' " +
-                                (model.dimension == 3 ? "is spatial (dimension: 3)" : "has closed loops (constraints:)") +
-                                ": mbfe generate writes its solver and mbfe eval evaluates it, but the runtime does "
-                                "not simulate or analyse such models yet");
   auto shared = std::make_shared<Shared>();
   shared->kind = runtime::model_kind(model);
   if (!model.bodies.empty()) {
@@ -149,16 +142,16 @@ Evaluation Model::evaluate(const State& state) const {
   const ir::Model& model = shared_->ir;
   if (!shared_->solver)
     throw runtime::InvalidInput("model '" + model.name + "' has no bodies: nothing to evaluate (try mbfe modal)");
-  const int nb = static_cast<int>(model.bodies.size());
-  Eigen::VectorXd q = state_vector(state.q, nb, "q", "one per body, in model order");
-  Eigen::VectorXd qd = state_vector(state.qd, nb, "qd", "one per body, in model order");
+  const ir::CoordinateLayout layout = ir::coordinate_layout(model);
+  Eigen::VectorXd q = state_vector(state.q, layout.num_positions, "q", "position coordinates, in model order");
+  Eigen::VectorXd qd = state_vector(state.qd, layout.num_velocities, "qd", "velocity coordinates, in model order");
   const mbfe_model_v1& solver = *shared_->solver;
   if (solver.num_driven > 0) {
     // Driven coordinates are the motion's at t, whatever the state says.
     std::vector<double> dq(solver.num_driven), dqd(solver.num_driven), dqdd(solver.num_driven);
     solver.motion(state.t, dq.data(), dqd.data(), dqdd.data());
     for (int k = 0; k < solver.num_driven; ++k) {
-      q[solver.driven_coordinates[k]] = dq[k];
+      q[solver.driven_positions ? solver.driven_positions[k] : solver.driven_coordinates[k]] = dq[k];
       qd[solver.driven_coordinates[k]] = dqd[k];
     }
   }

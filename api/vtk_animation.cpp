@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "runtime/fem/hermite_shape.h"
+#include "runtime/multibody/spatial_poses.h"
 #include "runtime/simulation/assembled_model.h"
 
 namespace mbfe {
@@ -27,7 +28,12 @@ struct Geometry {
   std::vector<std::array<double, 3>> force;          // per point
   std::vector<std::vector<int>> lines, verts;        // point indices
   std::vector<int> line_part, vert_part;
+  std::vector<int> line_axis;  // per line: the axis (0 x, 1 y, 2 z) of a body's triad, -1 otherwise
 };
+
+// A spatial model's triads are this fraction of its largest body point distance long.
+constexpr double kTriadShare = 0.25;
+constexpr double kTriadDefault = 0.1;  // m, when no body has a point off its origin
 
 template <class T>
 void write_array(std::ostream& out, const char* type, const char* name, int components, const std::vector<T>& v) {
@@ -147,11 +153,55 @@ void VtkAnimation::write_frame(const runtime::OutputRow& row, const std::string&
       }
       g.lines.push_back(line);
       g.line_part.push_back(part++);
+      g.line_axis.push_back(-1);
     }
   }
   // Bodies: through their named points, in the ground frame.
   const mbfe_model_v1* solver = model_.solver();
-  for (int b = 0; b < nb && solver; ++b) {
+  if (ir.dimension == 3 && solver) {
+    // A spatial body: a polyline from its frame's origin through its points,
+    // and its frame as a triad of three lines (cell data `axis`).
+    const std::vector<runtime::BodyPose> poses = runtime::spatial_poses(ir, row.q.data());
+    double reach = 0.0;
+    for (const ir::Body& body : ir.bodies)
+      for (const ir::NamedPoint& point : body.points)
+        reach = std::max(reach, Eigen::Vector3d(point.position3[0], point.position3[1], point.position3[2]).norm());
+    const double triad = reach > 0.0 ? kTriadShare * reach : kTriadDefault;
+    auto add_point = [&](const Eigen::Vector3d& x) {
+      g.points.push_back({x[0], x[1], x[2]});
+      g.w.push_back(0.0);
+      g.force.push_back({0.0, 0.0, 0.0});
+      return static_cast<int>(g.points.size()) - 1;
+    };
+    for (int b = 0; b < nb; ++b) {
+      const runtime::BodyPose& pose = poses[static_cast<std::size_t>(b)];
+      std::vector<int> line{add_point(pose.origin)};
+      for (const ir::NamedPoint& point : ir.bodies[b].points) {
+        double xyz[3];
+        solver->point_position3(row.q.data(), b, static_cast<int>(&point - ir.bodies[b].points.data()), xyz);
+        line.push_back(add_point(Eigen::Vector3d(xyz[0], xyz[1], xyz[2])));
+      }
+      if (line.size() >= 2) {
+        g.lines.push_back(line);
+        g.line_part.push_back(part);
+        g.line_axis.push_back(-1);
+      } else {
+        g.verts.push_back(line);
+        g.vert_part.push_back(part);
+      }
+      ++part;
+    }
+    for (int b = 0; b < nb; ++b) {
+      const runtime::BodyPose& pose = poses[static_cast<std::size_t>(b)];
+      for (int axis = 0; axis < 3; ++axis) {
+        g.lines.push_back({add_point(pose.origin), add_point(pose.origin + triad * pose.rotation.col(axis))});
+        g.line_part.push_back(part);
+        g.line_axis.push_back(axis);
+      }
+      ++part;
+    }
+  }
+  for (int b = 0; b < nb && solver && ir.dimension != 3; ++b) {
     const auto& points = ir.bodies[b].points;
     if (!points.empty()) {
       std::vector<int> line;
@@ -167,6 +217,7 @@ void VtkAnimation::write_frame(const runtime::OutputRow& row, const std::string&
       if (line.size() >= 2) {
         g.lines.push_back(line);
         g.line_part.push_back(part);
+        g.line_axis.push_back(-1);
       } else {
         g.verts.push_back(line);
         g.vert_part.push_back(part);
@@ -221,6 +272,11 @@ void VtkAnimation::write_frame(const runtime::OutputRow& row, const std::string&
   std::vector<int> parts = g.vert_part;
   parts.insert(parts.end(), g.line_part.begin(), g.line_part.end());  // VTK orders cells: verts, then lines
   write_array(out, "Int32", "part", 1, parts);
+  if (ir.dimension == 3) {
+    std::vector<int> axes(g.verts.size(), -1);
+    axes.insert(axes.end(), g.line_axis.begin(), g.line_axis.end());
+    write_array(out, "Int32", "axis", 1, axes);
+  }
   out << "      </CellData>\n      <Points>\n";
   write_array(out, "Float64", "position", 3, flat_points);
   out << "      </Points>\n";

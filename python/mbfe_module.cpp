@@ -21,6 +21,7 @@
 
 #include "api/mbfe.h"
 #include "api/simulator.h"
+#include "ir/coordinate_layout.h"
 
 namespace py = pybind11;
 
@@ -329,9 +330,9 @@ PYBIND11_MODULE(mbfe, module) {
         return "?";
       })
       .def_property_readonly("coordinates", [](const Model& m) {
-        std::vector<std::string> names;
-        for (const auto& b : m.ir().bodies) names.push_back(b.name);
-        return names;
+        // The position coordinates: the bodies' names, or a spatial model's
+        // <body>_qw .. for quaternions (ir/coordinate_layout.h).
+        return mbfe::ir::coordinate_layout(m.ir()).position_names;
       })
       .def(
           "eval",

@@ -59,9 +59,10 @@ Options:
                      acceleration (m/s^2), BODY:acc a body's joint coordinate
                      acceleration (coupled models; m/s^2 or rad/s^2), both as
                      columns at the end of a coupled model's row
-  --formulation F    coupled models: partitioned (default; eqs (16)-(17),
-                     |Phi| closed by Newton at every step) or augmented
-                     (multipliers; a cross-check, |Phi| drifts)
+  --formulation F    coupled models and closed loops: partitioned (default;
+                     eqs (16)-(17), |Phi| closed by Newton at every step) or
+                     augmented (multipliers; a cross-check: |Phi| drifts in
+                     coupled models, loops are projected after each step)
   --rho-inf R        generalized_alpha spectral radius at infinity (0..1)
                      (coupled models: generalized_alpha, trapezoid, backward_euler
                      and bdf2 run the original model in index-3 form with a
@@ -253,8 +254,9 @@ int cmd_simulate(const Args& args) {
     request.state_in_rows = true;  // the frames need every coordinate
     vtk = std::make_unique<VtkAnimation>(model, *vtk_dir, scale, static_cast<int>(frames), request.t_end);
   }
-  if (parsed.has("formulation") && model.kind() != runtime::ModelKind::kCoupled)
-    throw UsageError("--formulation applies to coupled models (bodies, beams and contacts) only");
+  if (parsed.has("formulation") && model.kind() != runtime::ModelKind::kCoupled && model.ir().constraints.empty())
+    throw UsageError("--formulation applies to coupled models (bodies, beams and contacts) and models with closed "
+                     "loops (constraints:) only");
   // A beam the analysis refuses is bad input before the output file is opened.
   model.assembled_for(request.adjust);
   std::optional<double> check_until;

@@ -46,7 +46,13 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
         return out;
       }
       case ModelKind::kRigid: {
-        RigidSystem system(*model.kernels(), model.bodies());
+        if (!model.ir().constraints.empty())
+          throw InvalidInput(model.ir().source_path + ": the linearisation of a model with closed loops "
+                             "(constraints:) is not available yet; mbfe simulate runs it");
+        if (model.coordinates().has_quaternions())
+          throw InvalidInput(model.ir().source_path + ": the linearisation of a model with spherical or free joints "
+                             "(quaternions) is not available yet; mbfe simulate runs it");
+        RigidSystem system(*model.kernels(), model.bodies(), model.coordinates());
         const int n = system.num_coordinates();
         Eigen::VectorXd y0(2 * n);
         y0 << q0, qd0;

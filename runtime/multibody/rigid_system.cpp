@@ -35,7 +35,8 @@ std::string coordinate_name(const mbfe_model_v1& model, int i) {
 std::vector<BodyInertia> body_inertias(const ir::Model& model) {
   std::vector<BodyInertia> out;
   out.reserve(model.bodies.size());
-  for (const ir::Body& b : model.bodies) out.push_back({b.name, b.mass, b.inertia});
+  for (const ir::Body& b : model.bodies)
+    out.push_back({b.name, b.mass, model.dimension == 3 ? b.inertia3[0] + b.inertia3[1] + b.inertia3[2] : b.inertia});
   return out;
 }
 
@@ -53,15 +54,16 @@ void evaluate_dynamics(const mbfe_model_v1& model, const double* q, const double
 void evaluate_rigid_terms(const mbfe_model_v1& model, const Eigen::VectorXd& q,
                           const Eigen::VectorXd& qd, double t, RigidTerms& out) {
   const int n = model.num_coordinates;
-  if (q.size() != n || qd.size() != n) {
+  const int nv = model.num_velocities > 0 ? model.num_velocities : n;
+  if (q.size() != n || qd.size() != nv) {
     std::ostringstream os;
-    os << "q has " << q.size() << " and qd " << qd.size() << " entries, expected " << n
-       << " each (one per body of model '" << model.model_name << "' in model order)";
+    os << "q has " << q.size() << " and qd " << qd.size() << " entries, expected " << n << " and " << nv
+       << " (the position and velocity coordinates of model '" << model.model_name << "' in model order)";
     throw std::invalid_argument(os.str());
   }
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m_row(n, n);
-  out.F.resize(n);
-  out.Q.resize(n);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m_row(nv, nv);
+  out.F.resize(nv);
+  out.Q.resize(nv);
   evaluate_dynamics(model, q.data(), qd.data(), t, m_row.data(), out.F.data(), out.Q.data());
   out.M = m_row;
 }
@@ -112,35 +114,58 @@ void throw_singular_mass_matrix(const mbfe_model_v1& model,
   throw SingularMassMatrixError(os.str(), t, std::move(coords), std::move(massless));
 }
 
-RigidSystem::RigidSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies)
-    : model_(model), bodies_(std::move(bodies)), nq_(model.num_coordinates) {
+RigidSystem::RigidSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies, RigidCoordinates coordinates)
+    : model_(model), bodies_(std::move(bodies)), coordinates_(std::move(coordinates)), nq_(model.num_coordinates) {
   check_model(model);
-  if (!bodies_.empty() && static_cast<int>(bodies_.size()) != nq_) {
+  nv_ = model.num_velocities > 0 ? model.num_velocities : nq_;
+  if (coordinates_.nq == 0) {
+    if (nv_ != nq_) {
+      std::ostringstream os;
+      os << "RigidSystem: model '" << model.model_name << "' has " << nq_ << " position and " << nv_
+         << " velocity coordinates: give its coordinate layout (rigid_coordinates)";
+      throw std::invalid_argument(os.str());
+    }
+    coordinates_.nq = coordinates_.nv = nq_;
+    for (int i = 0; i < nq_; ++i) {
+      coordinates_.rate_of.push_back(i);
+      coordinates_.rotation_of.push_back(-1);
+      coordinates_.rotation_axis.push_back(-1);
+    }
+  } else if (coordinates_.nq != nq_ || coordinates_.nv != nv_) {
+    std::ostringstream os;
+    os << "RigidSystem: the coordinate layout has " << coordinates_.nq << " / " << coordinates_.nv
+       << " position / velocity coordinates, the solver of '" << model.model_name << "' " << nq_ << " / " << nv_;
+    throw std::invalid_argument(os.str());
+  }
+  if (!bodies_.empty() && model.dimension != 3 && static_cast<int>(bodies_.size()) != nq_) {
     std::ostringstream os;
     os << "RigidSystem: " << bodies_.size() << " body inertias given, expected " << nq_
        << " (one per body of model '" << model.model_name << "')";
     throw std::invalid_argument(os.str());
   }
-  m_row_.resize(nq_, nq_);
-  m_.resize(nq_, nq_);
-  f_.resize(nq_);
-  q_force_.resize(nq_);
-  rhs_.resize(nq_);
-  qdd_.resize(nq_);
-  // Allocates the factor's storage once. Not `llt_ = LLT(nq_)`: Eigen's sized
+  m_row_.resize(nv_, nv_);
+  m_.resize(nv_, nv_);
+  f_.resize(nv_);
+  q_force_.resize(nv_);
+  rhs_.resize(nv_);
+  qdd_.resize(nv_);
+  // Allocates the factor's storage once. Not `llt_ = LLT(nv_)`: Eigen's sized
   // constructor leaves its `info` uninitialised and the assignment copies it,
   // which UndefinedBehaviorSanitizer reports (invalid enum load, LLT.h:66).
-  llt_.compute(Eigen::MatrixXd::Identity(nq_, nq_));
-  for (int i = 0; i < model.num_driven; ++i) driven_.push_back(model.driven_coordinates[i]);
+  llt_.compute(Eigen::MatrixXd::Identity(nv_, nv_));
+  for (int i = 0; i < model.num_driven; ++i) {
+    driven_.push_back(model.driven_coordinates[i]);
+    driven_positions_.push_back(model.driven_positions ? model.driven_positions[i] : model.driven_coordinates[i]);
+  }
   drive_q_.resize(static_cast<Eigen::Index>(driven_.size()));
   drive_qd_.resize(drive_q_.size());
   drive_qdd_.resize(drive_q_.size());
 }
 
 void RigidSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
-  if (y.size() != 2 * nq_) {
+  if (y.size() != nq_ + nv_) {
     std::ostringstream os;
-    os << "RigidSystem: y has " << y.size() << " entries, expected " << 2 * nq_ << " ([q; qd])";
+    os << "RigidSystem: y has " << y.size() << " entries, expected " << nq_ + nv_ << " ([q; v])";
     throw std::invalid_argument(os.str());
   }
   const double* q = y.data();
@@ -161,17 +186,21 @@ void RigidSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot)
     throw_singular_mass_matrix(model_, bodies_, m_, t);
   }
   qdd_ = llt_.solve(rhs_);
-  ydot.resize(2 * nq_);
-  if (driven_.empty()) ydot.head(nq_) = y.tail(nq_);
-  else ydot.head(nq_) = y_motion_.tail(nq_);
-  ydot.tail(nq_) = qdd_;
+  ydot.resize(nq_ + nv_);
+  if (model_.position_derivative != nullptr) model_.position_derivative(q, qd, ydot.data());
+  else ydot.head(nq_) = Eigen::Map<const Eigen::VectorXd>(qd, nv_);
+  ydot.tail(nv_) = qdd_;
+}
+
+void RigidSystem::after_step(double, Eigen::VectorXd& y) {
+  if (coordinates_.has_quaternions()) normalize_quaternions(coordinates_, y.data());
 }
 
 void RigidSystem::impose_motion(double t, Eigen::VectorXd& y) const {
   if (driven_.empty()) return;
   model_.motion(t, drive_q_.data(), drive_qd_.data(), drive_qdd_.data());
   for (std::size_t k = 0; k < driven_.size(); ++k) {
-    y[driven_[k]] = drive_q_[k];
+    y[driven_positions_[k]] = drive_q_[k];
     y[nq_ + driven_[k]] = drive_qd_[k];
   }
 }
@@ -186,19 +215,23 @@ void RigidSystem::drive_reactions(double t, const Eigen::VectorXd& y, Eigen::Vec
   evaluate_dynamics(model_, q, qd, t, m_row_.data(), f_.data(), q_force_.data());
   for (std::size_t k = 0; k < driven_.size(); ++k) {
     const int d = driven_[k];
-    out[static_cast<Eigen::Index>(k)] = m_row_.row(d).dot(ydot.tail(nq_)) + f_[d] - q_force_[d];
+    out[static_cast<Eigen::Index>(k)] = m_row_.row(d).dot(ydot.tail(nv_)) + f_[d] - q_force_[d];
   }
 }
 
 std::string RigidSystem::name(int i) const {
-  if (i < nq_) return coordinate_name(model_, i);
+  if (i < nq_) {
+    if (static_cast<int>(coordinates_.position_columns.size()) == nq_) return coordinates_.position_columns[i];
+    return coordinate_name(model_, i);
+  }
+  if (static_cast<int>(coordinates_.velocity_columns.size()) == nv_) return coordinates_.velocity_columns[i - nq_];
   return coordinate_name(model_, i - nq_) + "_dot";
 }
 
 double RigidSystem::kinetic_energy(const Eigen::VectorXd& y) {
   model_.mass_matrix(y.data(), m_row_.data());
   m_ = m_row_;
-  return 0.5 * y.tail(nq_).dot(m_ * y.tail(nq_));
+  return 0.5 * y.tail(nv_).dot(m_ * y.tail(nv_));
 }
 
 }  // namespace mbfe::runtime

@@ -1,5 +1,8 @@
-// The rigid part of a model alone, M(q) q'' + F(q, q') = Q(q, q', t) (eq (6)),
-// as a first-order system y = [q; q'] for the integrators.
+// The rigid part of a model alone, M(q) v' + F(q, v) = Q(q, v, t) (eq (6)),
+// as a first-order system y = [q; v] for the integrators: q' = v for planar
+// models and spatial ones of revolute and prismatic joints, q' = G(q) v (the
+// kernel position_derivative) where a joint has a quaternion, renormalised
+// after every accepted step.
 //
 //   const mbfe_model_v1& model = *mbfe_model_double_pendulum();
 //   runtime::RigidSystem system(model, runtime::body_inertias(ir));
@@ -16,6 +19,7 @@
 
 #include "runtime/abi/mbfe_model_abi.h"
 #include "runtime/integrators/ode_system.h"
+#include "runtime/multibody/rigid_coordinates.h"
 #include "ir/model.h"
 
 namespace mbfe::runtime {
@@ -24,7 +28,7 @@ namespace mbfe::runtime {
 struct BodyInertia {
   std::string name;
   double mass = 0.0;     // kg
-  double inertia = 0.0;  // kg m^2 about the centre of mass
+  double inertia = 0.0;  // kg m^2 about the centre of mass (spatial: the trace of the tensor)
 };
 
 /// One entry per body of `model`, in model (= coordinate) order.
@@ -56,30 +60,42 @@ void evaluate_rigid_terms(const mbfe_model_v1& model, const Eigen::VectorXd& q,
                                              const std::vector<BodyInertia>& bodies,
                                              const Eigen::MatrixXd& M, double t);
 
-/// y = [q; q'] (2 nq entries); y' = [q'; M^-1 (Q - F)].
+/// y = [q; v] (nq + nv entries); y' = [G(q) v; M^-1 (Q - F)].
 class RigidSystem : public OdeSystem {
  public:
   /// @param model the generated solver; must outlive this object.
   /// @param bodies mass properties in coordinate order, for the message of a
   ///        singular mass matrix; empty = unknown (the message then names only
   ///        the coordinates). @throws std::invalid_argument if `bodies` is not
-  ///        empty and has a size other than num_coordinates, or the ABI version
-  ///        differs from MBFE_MODEL_ABI_VERSION.
-  explicit RigidSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies = {});
+  ///        empty and has a size other than the model's bodies, or the ABI
+  ///        version differs from MBFE_MODEL_ABI_VERSION.
+  /// @param coordinates the layout of q and v (rigid_coordinates of the IR);
+  ///        empty (nq = 0) = one of each per coordinate of the solver, which
+  ///        must then have nv = nq.
+  explicit RigidSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies = {},
+                       RigidCoordinates coordinates = {});
 
-  int size() const override { return 2 * nq_; }
+  int size() const override { return nq_ + nv_; }
+  /// nq, the position coordinates.
   int num_coordinates() const { return nq_; }
+  /// nv, the velocity coordinates (= nq without quaternions).
+  int num_velocities() const { return nv_; }
+  const RigidCoordinates& coordinates() const { return coordinates_; }
+
+  /// Renormalises the quaternions of y (none: nothing).
+  void after_step(double t, Eigen::VectorXd& y) override;
 
   /// @throws std::invalid_argument if y has the wrong size.
   /// @throws SingularMassMatrixError if M(q) is not positive definite
   ///         (reciprocal condition estimate below kMassRcondFloor).
   void rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) override;
 
-  /// "<coordinate>" for q, "<coordinate>_dot" for q'.
+  /// "<coordinate>" for q, "<coordinate>_dot" for q' (and the layout's
+  /// names of the velocities of spherical and free joints).
   std::string name(int i) const override;
 
   /// Total mechanical energy is not defined by the ABI (no potential kernel);
-  /// kinetic energy 1/2 q'^T M(q) q' in J at y.
+  /// kinetic energy 1/2 v^T M(q) v in J at y.
   double kinetic_energy(const Eigen::VectorXd& y);
 
   /// Driven joints (`motion:`): their coordinates, model order. rhs() takes
@@ -99,7 +115,10 @@ class RigidSystem : public OdeSystem {
  private:
   const mbfe_model_v1& model_;
   std::vector<BodyInertia> bodies_;
-  int nq_;
+  RigidCoordinates coordinates_;
+  int nq_, nv_;
+  // Per driven joint: its entry of q (driven_ indexes v).
+  std::vector<int> driven_positions_;
   // Workspace, sized once.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m_row_;
   Eigen::MatrixXd m_;

@@ -21,11 +21,11 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   if (!model_.bodies.empty()) {
     if (!kernels)
       throw InvalidInput("model '" + model_.name + "' has bodies: it needs its generated solver");
-    if (kernels->model_name != model_.name ||
-        kernels->num_coordinates != static_cast<int>(model_.bodies.size()))
+    coordinates_ = rigid_coordinates(model_);
+    if (kernels->model_name != model_.name || kernels->num_coordinates != coordinates_.nq)
       throw InvalidInput("the solver '" + std::string(kernels->model_name) + "' (" +
                          std::to_string(kernels->num_coordinates) + " coordinates) is not the solver of model '" +
-                         model_.name + "' (" + std::to_string(model_.bodies.size()) + " bodies)");
+                         model_.name + "' (" + std::to_string(coordinates_.nq) + " position coordinates)");
     kernels_ = kernels;
     bodies_ = body_inertias(model_);
   }
@@ -141,13 +141,11 @@ std::shared_ptr<CoupledDynamics> AssembledModel::make_dynamics(bool adjusted) co
 }
 
 void AssembledModel::initial_coordinates(Eigen::VectorXd& q, Eigen::VectorXd& qd) const {
-  const int nb = static_cast<int>(model_.bodies.size());
-  q = Eigen::VectorXd::Zero(nb + beams_.dof);
-  qd = Eigen::VectorXd::Zero(nb + beams_.dof);
-  for (int i = 0; i < nb; ++i) {
-    q[i] = model_.initial.q[i];
-    qd[i] = model_.initial.qd[i];
-  }
+  const int nq = coordinates_.nq, nv = coordinates_.nv;
+  q = Eigen::VectorXd::Zero(nq + beams_.dof);
+  qd = Eigen::VectorXd::Zero(nv + beams_.dof);
+  for (int i = 0; i < nq; ++i) q[i] = model_.initial.q[i];
+  for (int i = 0; i < nv; ++i) qd[i] = model_.initial.qd[i];
 }
 
 }  // namespace mbfe::runtime

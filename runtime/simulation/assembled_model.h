@@ -49,6 +49,9 @@ class AssembledModel {
 
   /// Mass properties per body, for the message of a singular mass matrix.
   const std::vector<BodyInertia>& bodies() const { return bodies_; }
+  /// Where the bodies' position and velocity coordinates sit (nq, nv,
+  /// quaternions); empty (nq = 0) for a beam-only model.
+  const RigidCoordinates& coordinates() const { return coordinates_; }
 
   /// The coupled model with the original or the adjusted beams, built once
   /// and shared by every run. Coupled models only.
@@ -60,7 +63,8 @@ class AssembledModel {
 
   /// The initial coordinates of the model's `initial:` block, [q_b; q_c]:
   /// the rigid coordinates in model order, then every beam's free DOFs at rest
-  /// and undeformed (zero). q and qd are resized (nb + nc entries).
+  /// and undeformed (zero). q and qd are resized (nq + nc and nv + nc
+  /// entries; nq = nv = one per body in a planar model).
   void initial_coordinates(Eigen::VectorXd& q, Eigen::VectorXd& qd) const;
 
   /// The links' rest offsets (their `rest`, or found for `hold`) and the
@@ -77,6 +81,7 @@ class AssembledModel {
   ModelKind kind_;
   BeamModel beams_;
   std::vector<BodyInertia> bodies_;
+  RigidCoordinates coordinates_;
   // The coupled model, original and adjusted (null when there is none).
   std::shared_ptr<const CoupledModel> original_coupled_, adjusted_coupled_;
   LinkFormFinding links_;

@@ -78,6 +78,8 @@ const char* beam_coordinate_unit(bool slope);
 const char* beam_rate_unit(bool slope);
 
 std::unique_ptr<ModelRun> make_rigid_run(const AssembledModel& model, const SimulationRequest& request);
+/// A model of bodies with closed loops (called by make_rigid_run).
+std::unique_ptr<ModelRun> make_loop_run(const AssembledModel& model, const SimulationRequest& request);
 std::unique_ptr<ModelRun> make_beam_run(const AssembledModel& model, const SimulationRequest& request);
 std::unique_ptr<ModelRun> make_coupled_run(const AssembledModel& model, const SimulationRequest& request);
 

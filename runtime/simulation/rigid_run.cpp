@@ -1,4 +1,6 @@
 // A model of bodies only: y = [q; q'], y' = [q'; M^-1 (Q - F)].
+#include <string>
+
 #include "runtime/errors/invalid_input.h"
 #include "runtime/multibody/rigid_system.h"
 #include "runtime/simulation/model_run.h"
@@ -8,28 +10,43 @@ namespace mbfe::runtime::detail {
 
 namespace {
 
+// An initial quaternion off unit length by more than this was not meant so:
+// say that it was scaled.
+constexpr double kUnitQuaternionNoise = 1e-12;
+
 class RigidRun final : public ModelRun {
  public:
   RigidRun(const AssembledModel& model, const SimulationRequest& request)
-      : model_(model), system_(*model.kernels(), model.bodies()) {
-    const int n = system_.num_coordinates();
+      : model_(model), system_(*model.kernels(), model.bodies(), model.coordinates()) {
+    const RigidCoordinates& c = model.coordinates();
     Eigen::VectorXd q0, qd0;
     model.initial_coordinates(q0, qd0);
-    y0_.resize(2 * n);
+    y0_.resize(c.nq + c.nv);
     y0_ << q0, qd0;
+    if (c.has_quaternions()) {
+      const double error = quaternion_norm_error(c, y0_.data());
+      normalize_quaternions(c, y0_.data());
+      if (error > kUnitQuaternionNoise)
+        notices_.push_back("the initial quaternions were scaled to unit length (the largest was off by " +
+                           std::to_string(error) + ")");
+    }
     system_.impose_motion(0.0, y0_);
-    if (request.static_start.value_or(model.ir().initial.static_start))
+    if (request.static_start.value_or(model.ir().initial.static_start)) {
+      if (c.nq != c.nv)
+        throw InvalidInput(model.ir().source_path + ": a static start is not available for a model with spherical or "
+                           "free joints (quaternions) yet; start from `initial:` as written");
       rigid_static_state(model.ir(), system_, y0_);
+    }
     layout_.columns.push_back("t");
     layout_.units.push_back("s");
-    for (int i = 0; i < 2 * n; ++i) {
+    for (int i = 0; i < c.nq + c.nv; ++i) {
       layout_.columns.push_back(system_.name(i));
-      const ir::Body& body = model.ir().bodies[i % n];
-      layout_.units.push_back(i < n ? coordinate_unit(body) : rate_unit(body));
+      layout_.units.push_back(i < c.nq ? c.position_units[i] : c.velocity_units[i - c.nq]);
     }
     for (int d : system_.driven()) {
-      layout_.columns.push_back(model.ir().bodies[d].name + "_drive");
-      layout_.units.push_back(model.ir().bodies[d].joint.type == ir::JointType::kRevolute ? "N m" : "N");
+      const ir::Body& body = model.ir().bodies[c.velocity_body[d]];
+      layout_.columns.push_back(body.name + "_drive");
+      layout_.units.push_back(body.joint.type == ir::JointType::kRevolute ? "N m" : "N");
     }
   }
 
@@ -37,35 +54,36 @@ class RigidRun final : public ModelRun {
 
   void row(double t, const Eigen::VectorXd& y, std::vector<double>& values, Eigen::VectorXd* q,
            Eigen::VectorXd* qd) override {
-    const int n = system_.num_coordinates();
+    const int n = system_.num_coordinates(), nv = system_.num_velocities();
     y_out_ = y;
     system_.impose_motion(t, y_out_);
     values[0] = t;
-    for (int i = 0; i < 2 * n; ++i) values[1 + i] = y_out_[i];
+    for (int i = 0; i < n + nv; ++i) values[1 + i] = y_out_[i];
     if (!system_.driven().empty()) {
       system_.drive_reactions(t, y_out_, reactions_);
-      for (Eigen::Index k = 0; k < reactions_.size(); ++k) values[1 + 2 * n + k] = reactions_[k];
+      for (Eigen::Index k = 0; k < reactions_.size(); ++k) values[1 + n + nv + k] = reactions_[k];
     }
     if (q != nullptr) {
       *q = y_out_.head(n);
-      *qd = y_out_.tail(n);
+      *qd = y_out_.tail(nv);
     }
   }
 
   void full_state(double t, const Eigen::VectorXd& y, Eigen::VectorXd& q, Eigen::VectorXd& qd) override {
-    const int n = system_.num_coordinates();
+    const int n = system_.num_coordinates(), nv = system_.num_velocities();
     y_out_ = y;
     system_.impose_motion(t, y_out_);
     q = y_out_.head(n);
-    qd = y_out_.tail(n);
+    qd = y_out_.tail(nv);
   }
 
   Eigen::VectorXd state_of(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override {
-    const int n = system_.num_coordinates();
-    if (q.size() != n || qd.size() != n)
+    const int n = system_.num_coordinates(), nv = system_.num_velocities();
+    if (q.size() != n || qd.size() != nv)
       throw InvalidInput("the state has " + std::to_string(q.size()) + " / " + std::to_string(qd.size()) +
-                         " coordinates, expected " + std::to_string(n) + " (one per body)");
-    Eigen::VectorXd y(2 * n);
+                         " coordinates, expected " + std::to_string(n) + " / " + std::to_string(nv) +
+                         " (position / velocity coordinates)");
+    Eigen::VectorXd y(n + nv);
     y << q, qd;
     system_.impose_motion(t, y);
     return y;
@@ -89,6 +107,7 @@ std::unique_ptr<ModelRun> make_rigid_run(const AssembledModel& model, const Simu
     throw InvalidRequest("adjust", "applies to beam models only ('" + model.ir().name + "' has no beams)");
   if (!request.probes.empty())
     throw InvalidRequest("probes", "apply to beam models only ('" + model.ir().name + "' has no beams)");
+  if (!model.ir().constraints.empty()) return make_loop_run(model, request);
   return std::make_unique<RigidRun>(model, request);
 }
 

@@ -45,6 +45,24 @@ class SameAsTheCommandLine(unittest.TestCase):
             # The CSV prints 17 significant digits: the same doubles.
             np.testing.assert_array_equal(run[name], rows[:, k], err_msg=name)
 
+    def test_spatial_and_loop_models(self):
+        for name, formulation in (("double_pendulum_3d.yaml", None), ("slider_crank_3d.yaml", "augmented"),
+                                  ("four_bar.yaml", "partitioned")):
+            with self.subTest(model=name), tempfile.TemporaryDirectory() as tmp:
+                out = os.path.join(tmp, "s.csv")
+                extra = ["--formulation", formulation] if formulation else []
+                r = cli("simulate", model(name), "--t-end", "0.05", "--quiet", "--out", out, *extra)
+                self.assertEqual(r.returncode, 0, r.stderr)
+                header, rows = read_csv(out)
+                kwargs = {"formulation": formulation} if formulation else {}
+                run = mbfe.load(model(name)).simulate(t_end=0.05, **kwargs)
+                self.assertEqual(run.status, "completed")
+                self.assertEqual(run.columns, header)
+                for k, column in enumerate(header):
+                    np.testing.assert_array_equal(run[column], rows[:, k], err_msg=column)
+        self.assertEqual(mbfe.load(model("slider_crank_3d.yaml")).coordinates,
+                         ["crank", "rod_qw", "rod_qx", "rod_qy", "rod_qz", "slider"])
+
     def test_crossing_with_probe_and_springs(self):
         with tempfile.TemporaryDirectory() as tmp:
             out = os.path.join(tmp, "c.csv")

@@ -124,3 +124,42 @@ class Animation(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class SpatialAnimation(unittest.TestCase):
+    """The spatial slider-crank's frames: each body a polyline from its frame's
+    origin through its points, each frame a right-handed triad of equal
+    orthogonal axes (cell data `axis`), and the loop closed in the picture:
+    the rod's end where the slider's origin is."""
+
+    def test_bodies_and_triads(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            vtk_dir = os.path.join(tmp, "vtk")
+            r = subprocess.run([CLI, "simulate", os.path.join(SOURCE, "models", "slider_crank_3d.yaml"), "--t-end",
+                                "0.2", "--out", os.path.join(tmp, "sc.csv"), "--vtk", vtk_dir, "--vtk-frames", "5",
+                                "--quiet"], capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            reader = vtk.vtkXMLPolyDataReader()
+            reader.SetFileName(os.path.join(vtk_dir, "frames", "frame_000004.vtp"))
+            reader.Update()
+            data = reader.GetOutput()
+        axis = data.GetCellData().GetArray("axis")
+        part = data.GetCellData().GetArray("part")
+        self.assertIsNotNone(axis)
+        cells = {}
+        for c in range(data.GetNumberOfCells()):
+            ids = data.GetCell(c).GetPointIds()
+            points = [np.array(data.GetPoint(ids.GetId(k))) for k in range(ids.GetNumberOfIds())]
+            cells.setdefault(int(part.GetValue(c)), []).append((int(axis.GetValue(c)), points))
+        # Parts 0..2: crank, rod, slider (origin, then points); 3..5 their triads.
+        rod_end = cells[1][0][1][-1]
+        slider_origin = cells[2][0][1][0]
+        np.testing.assert_allclose(rod_end, slider_origin, atol=1e-12)
+        for body in range(3, 6):
+            axes = sorted(cells[body], key=lambda c: c[0])
+            self.assertEqual([a for a, _ in axes], [0, 1, 2])
+            e = np.array([p[1] - p[0] for _, p in axes])
+            lengths = np.linalg.norm(e, axis=1)
+            np.testing.assert_allclose(lengths, lengths[0], rtol=1e-12)
+            np.testing.assert_allclose(e @ e.T / lengths[0] ** 2, np.eye(3), atol=1e-12)
+            self.assertAlmostEqual(np.dot(np.cross(e[0], e[1]), e[2]) / lengths[0] ** 3, 1.0, places=12)

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "tests/support/cli.h"
+#include "tests/support/process.h"
 
 namespace mbfe {
 namespace {
@@ -141,12 +143,19 @@ TEST(SpatialEval, CoordinateCountsAreCheckedAndNamed) {
   EXPECT_NE(text.out.find("velocity coordinates: crank rod_wx rod_wy rod_wz slider"), std::string::npos) << text.out;
 }
 
-TEST(SpatialEval, SimulateRefusesSpatialModelsAndLoopsForNow) {
-  for (const char* model : {"models/double_pendulum_3d.yaml", "models/four_bar.yaml"}) {
-    const test::CliRun r = test::run_cli(std::string("simulate ") + model + " --t-end 0.01");
-    EXPECT_EQ(r.status, 2) << r.all();
-    EXPECT_NE(r.err.find("the runtime does not simulate or analyse such models yet"), std::string::npos) << r.err;
-  }
+TEST(SpatialEval, SimulateRefusesASpatialModelWithBeams) {
+  const test::TempDir dir;
+  const std::string path = (dir / "beam3d.yaml").string();
+  std::ofstream(path) << "model: beam3d\ndimension: 3\ngravity: [0, 0, -9.81]\n"
+                         "bodies:\n  - {name: a, parent: ground, joint: {type: revolute}, mass: 1, "
+                         "inertia: [1, 1, 1, 0, 0, 0]}\n"
+                         "beams:\n  - {name: b, length: 1, elements: 2}\n";
+  const test::CliRun r = test::run_cli("simulate " + path + " --t-end 0.01");
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find("beam3d.yaml:6:1: beams: a spatial model (dimension: 3) cannot have beams: 3D beams do not "
+                       "exist yet"),
+            std::string::npos)
+      << r.err;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // `mbfe simulate` of its model file), resumed, a failing point recorded while
 // the others go on, a bad sweep file refused, and the Slurm scripts of a dry run;
 // a resume after the simulate: or collect: block changed runs the points again,
+// a sweep of a spatial model with a closed loop,
 // a message with non-ASCII text stays a result, devices and arguments a Slurm
 // script cannot carry are refused.
 #include <gtest/gtest.h>
@@ -74,6 +75,26 @@ TEST(Sweep, SixSpeedsLocallyRepeatableAndResumed) {
   ASSERT_EQ(again.status, 0) << again.all();
   EXPECT_NE(again.err.find("6 points, 6 already done, 0 to run"), std::string::npos) << again.err;
   EXPECT_EQ(fs::last_write_time(out + "/points/3/result.json"), stamp);
+}
+
+TEST(Sweep, SpatialLoopModelPointsRunAndCollect) {
+  constexpr double kRoundOffResidual = 1e-12;  // m: the partitioned formulation's closure
+  TempDir dir;
+  const std::string out = (dir / "masses").string();
+  const CliRun r = run_cli("sweep " + shell_quote(source("tests/sweep/slider_crank_masses.yaml")) + " --out " +
+                           shell_quote(out) + " --jobs 2");
+  ASSERT_EQ(r.status, 0) << r.all();
+  EXPECT_NE(r.err.find("3 done, 0 failed"), std::string::npos) << r.err;
+  const Csv summary = read_csv(out + "/summary.csv");
+  ASSERT_EQ(summary.rows.size(), 3u);
+  const int residual = column(summary, "residual_max"), spin = column(summary, "rod_spin_final");
+  for (int i = 0; i < 3; ++i) {
+    const Csv run = read_csv(out + "/points/" + std::to_string(i) + "/run.csv");
+    EXPECT_LT(summary.rows[i][residual], kRoundOffResidual) << "point " << i;
+    EXPECT_EQ(summary.rows[i][spin], run.rows.back()[column(run, "rod_wx")]) << "point " << i;
+  }
+  // A heavier slider changes the motion.
+  EXPECT_NE(summary.rows[0][spin], summary.rows[2][spin]);
 }
 
 TEST(Sweep, AFailingPointIsRecordedAndTheOthersGoOn) {

@@ -1,0 +1,220 @@
+#include "runtime/multibody/loop_systems.h"
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <sstream>
+#include <stdexcept>
+
+#include "runtime/errors/multibody_errors.h"
+
+namespace mbfe::runtime {
+
+namespace {
+
+double smallest_singular_value(const Eigen::MatrixXd& a) {
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(a);
+  return svd.singularValues()(svd.singularValues().size() - 1);
+}
+
+// The reciprocal condition below which the saddle-point matrix of the
+// augmented formulation is singular (a redundant loop, a dead point).
+constexpr double kSaddleRcondFloor = 1e-13;
+
+}  // namespace
+
+LoopSystem::LoopSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies, RigidCoordinates coordinates)
+    : model_(model),
+      bodies_(std::move(bodies)),
+      closure_(model, std::move(coordinates)),
+      nq_(closure_.coordinates().nq),
+      nv_(closure_.coordinates().nv),
+      nc_(closure_.rows()) {
+  if (model.abi_version != MBFE_MODEL_ABI_VERSION || model.num_coordinates != nq_)
+    throw std::invalid_argument(std::string("LoopSystem: the solver of '") + model.model_name +
+                                "' does not match its coordinate layout or this runtime's ABI");
+  if (model.num_driven > 0)
+    throw std::invalid_argument(std::string("model '") + model.model_name +
+                                "': driven joints (motion:) in a model with closed loops are not supported yet");
+  m_row_.resize(nv_, nv_);
+  m_.resize(nv_, nv_);
+  f_.resize(nv_);
+  q_force_.resize(nv_);
+}
+
+void LoopSystem::dynamics(const double* q, const double* v, double t) {
+  evaluate_dynamics(model_, q, v, t, m_row_.data(), f_.data(), q_force_.data());
+  m_ = m_row_;
+}
+
+void LoopSystem::position_rates(const double* q, const double* v, double* qdot) const {
+  if (model_.position_derivative != nullptr) model_.position_derivative(q, v, qdot);
+  else Eigen::Map<Eigen::VectorXd>(qdot, nq_) = Eigen::Map<const Eigen::VectorXd>(v, nv_);
+}
+
+void LoopSystem::make_consistent(double t, Eigen::VectorXd& q, Eigen::VectorXd& v) const {
+  normalize_quaternions(closure_.coordinates(), q.data());
+  // The coordinates given a velocity stay independent where the loops allow,
+  // so that what the user set moves as set (a crank's angle and rate).
+  std::vector<bool> keep(nv_);
+  for (int i = 0; i < nv_; ++i) keep[i] = v[i] != 0.0;
+  const LoopPartition part = closure_.choose_partition(q.data(), t, nullptr, &keep);
+  closure_.close(q.data(), part.dependent, t);
+  // The partition at the closed q (it may differ from the one at the given q).
+  const LoopPartition closed = closure_.choose_partition(q.data(), t, nullptr, &keep);
+  Eigen::MatrixXd J;
+  closure_.jacobian(q.data(), J);
+  Eigen::MatrixXd jd(nc_, nc_);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(nc_);
+  for (int k = 0; k < nc_; ++k) jd.col(k) = J.col(closed.dependent[k]);
+  for (int i : closed.independent) b -= J.col(i) * v[i];
+  const Eigen::VectorXd vd = jd.partialPivLu().solve(b);
+  for (int k = 0; k < nc_; ++k) v[closed.dependent[k]] = vd[k];
+}
+
+// ---- Partitioned ----
+
+LoopPartitionedSystem::LoopPartitionedSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies,
+                                             RigidCoordinates coordinates)
+    : LoopSystem(model, std::move(bodies), std::move(coordinates)) {
+  // Until state_of() chooses at the initial state: the last nc coordinates.
+  for (int i = 0; i < nv_; ++i) (i < nv_ - nc_ ? part_.independent : part_.dependent).push_back(i);
+  llt_.compute(Eigen::MatrixXd::Identity(nv_ - nc_, nv_ - nc_));
+}
+
+void LoopPartitionedSystem::close(double t, const Eigen::VectorXd& y) {
+  const int nu = nv_ - nc_;
+  q_ = y.head(nq_);
+  normalize_quaternions(closure_.coordinates(), q_.data());
+  closure_.close(q_.data(), part_.dependent, t);
+  closure_.jacobian(q_.data(), j_);
+  jd_.resize(nc_, nc_);
+  ju_.resize(nc_, nu);
+  for (int k = 0; k < nc_; ++k) jd_.col(k) = j_.col(part_.dependent[k]);
+  for (int k = 0; k < nu; ++k) ju_.col(k) = j_.col(part_.independent[k]);
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jd_);
+  // v = B v_u: B's independent rows the identity, its dependent rows -J_d^-1 J_u.
+  const Eigen::MatrixXd dependent_rows = -lu.solve(ju_);
+  b_.setZero(nv_, nu);
+  for (int k = 0; k < nu; ++k) b_(part_.independent[k], k) = 1.0;
+  for (int k = 0; k < nc_; ++k) b_.row(part_.dependent[k]) = dependent_rows.row(k);
+  v_ = b_ * y.tail(nu);
+  closure_.gamma(q_.data(), v_.data(), gamma_);
+  const Eigen::VectorXd cd = lu.solve(gamma_);
+  c_.setZero(nv_);
+  for (int k = 0; k < nc_; ++k) c_[part_.dependent[k]] = cd[k];
+}
+
+void LoopPartitionedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
+  if (y.size() != size()) {
+    std::ostringstream os;
+    os << "LoopPartitionedSystem: y has " << y.size() << " entries, expected " << size() << " ([q; v_u])";
+    throw std::invalid_argument(os.str());
+  }
+  close(t, y);
+  dynamics(q_.data(), v_.data(), t);
+  reduced_.noalias() = b_.transpose() * m_ * b_;
+  rhs_.noalias() = b_.transpose() * (q_force_ - f_ - m_ * c_);
+  llt_.compute(reduced_);
+  if (llt_.info() != Eigen::Success || !(llt_.rcond() >= RigidSystem::kMassRcondFloor))
+    throw_singular_mass_matrix(model_, bodies_, m_, t);
+  a_u_ = llt_.solve(rhs_);
+  ydot.resize(size());
+  position_rates(q_.data(), v_.data(), ydot.data());
+  ydot.tail(nv_ - nc_) = a_u_;
+}
+
+void LoopPartitionedSystem::after_step(double t, Eigen::VectorXd& y) {
+  close(t, y);
+  y.head(nq_) = q_;
+  double best = 0.0;
+  const LoopPartition candidate = closure_.choose_partition(q_.data(), t, &best);
+  if (candidate.dependent == part_.dependent) return;
+  if (smallest_singular_value(jd_) >= kRepartitionRatio * best) return;
+  // J_d has become ill-conditioned: the same state in the new independent velocities.
+  part_ = candidate;
+  ++repartitions_;
+  for (int k = 0; k < nv_ - nc_; ++k) y[nq_ + k] = v_[part_.independent[k]];
+}
+
+std::string LoopPartitionedSystem::name(int i) const {
+  if (i < nq_) return closure_.coordinates().position_columns[i];
+  return closure_.coordinates().velocity_columns[part_.independent[i - nq_]];
+}
+
+Eigen::VectorXd LoopPartitionedSystem::state_of(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+  part_ = closure_.choose_partition(q.data(), t);
+  Eigen::VectorXd y(size());
+  y.head(nq_) = q;
+  for (int k = 0; k < nv_ - nc_; ++k) y[nq_ + k] = v[part_.independent[k]];
+  return y;
+}
+
+void LoopPartitionedSystem::full_state(double t, const Eigen::VectorXd& y, Eigen::VectorXd& q, Eigen::VectorXd& v) {
+  close(t, y);
+  q = q_;
+  v = v_;
+}
+
+// ---- Augmented ----
+
+LoopAugmentedSystem::LoopAugmentedSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies,
+                                         RigidCoordinates coordinates)
+    : LoopSystem(model, std::move(bodies), std::move(coordinates)) {
+  saddle_.resize(nv_ + nc_, nv_ + nc_);
+  rhs_.resize(nv_ + nc_);
+}
+
+void LoopAugmentedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
+  if (y.size() != size()) {
+    std::ostringstream os;
+    os << "LoopAugmentedSystem: y has " << y.size() << " entries, expected " << size() << " ([q; v])";
+    throw std::invalid_argument(os.str());
+  }
+  q_ = y.head(nq_);
+  normalize_quaternions(closure_.coordinates(), q_.data());
+  const Eigen::VectorXd v = y.tail(nv_);
+  dynamics(q_.data(), v.data(), t);
+  closure_.jacobian(q_.data(), j_);
+  closure_.gamma(q_.data(), v.data(), gamma_);
+  saddle_.setZero();
+  saddle_.topLeftCorner(nv_, nv_) = m_;
+  saddle_.topRightCorner(nv_, nc_) = j_.transpose();
+  saddle_.bottomLeftCorner(nc_, nv_) = j_;
+  rhs_.head(nv_) = q_force_ - f_;
+  rhs_.tail(nc_) = gamma_;
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(saddle_);
+  if (!(lu.rcond() >= kSaddleRcondFloor)) {
+    std::ostringstream os;
+    os << "model '" << model_.model_name << "': the augmented matrix [[M, J^T], [J, 0]] is singular at t = " << t
+       << " s (rcond " << lu.rcond() << "): a redundant loop, a dead point or a body without mass";
+    throw SingularConstraintError(os.str(), "", t, lu.rcond());
+  }
+  x_ = lu.solve(rhs_);
+  ydot.resize(size());
+  position_rates(q_.data(), v.data(), ydot.data());
+  ydot.tail(nv_) = x_.head(nv_);
+}
+
+void LoopAugmentedSystem::after_step(double t, Eigen::VectorXd& y) {
+  normalize_quaternions(closure_.coordinates(), y.data());
+  closure_.project(y.data(), t);
+  closure_.project_velocity(y.data(), y.data() + nq_);
+}
+
+std::string LoopAugmentedSystem::name(int i) const {
+  if (i < nq_) return closure_.coordinates().position_columns[i];
+  return closure_.coordinates().velocity_columns[i - nq_];
+}
+
+Eigen::VectorXd LoopAugmentedSystem::state_of(double, const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+  Eigen::VectorXd y(size());
+  y << q, v;
+  return y;
+}
+
+void LoopAugmentedSystem::full_state(double, const Eigen::VectorXd& y, Eigen::VectorXd& q, Eigen::VectorXd& v) {
+  q = y.head(nq_);
+  v = y.tail(nv_);
+}
+
+}  // namespace mbfe::runtime

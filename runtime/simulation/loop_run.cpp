@@ -1,0 +1,131 @@
+// A model of bodies with closed loops: the partitioned formulation (default)
+// or the augmented one (--formulation augmented), from a consistent initial
+// state; rows t, q, v, loop_residual (docs/partitioning.md, "Closed loops").
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "runtime/errors/invalid_input.h"
+#include "runtime/errors/multibody_errors.h"
+#include "runtime/multibody/loop_systems.h"
+#include "runtime/simulation/model_run.h"
+
+namespace mbfe::runtime::detail {
+
+namespace {
+
+// A projected coordinate that moved less than this (relative) moved by round-off.
+constexpr double kProjectionNoise = 1e-12;
+
+class LoopRun final : public ModelRun {
+ public:
+  LoopRun(const AssembledModel& model, const SimulationRequest& request) : model_(model) {
+    const RigidCoordinates& c = model.coordinates();
+    const bool augmented = request.formulation == CoupledFormulation::kAugmented;
+    try {
+      if (augmented) system_ = std::make_unique<LoopAugmentedSystem>(*model.kernels(), model.bodies(), c);
+      else system_ = std::make_unique<LoopPartitionedSystem>(*model.kernels(), model.bodies(), c);
+    } catch (const std::invalid_argument& e) {
+      throw InvalidInput(model.ir().source_path + ": " + e.what());
+    }
+    Eigen::VectorXd q0, v0;
+    model.initial_coordinates(q0, v0);
+    Eigen::VectorXd q = q0, v = v0;
+    try {
+      system_->make_consistent(0.0, q, v);
+      y0_ = system_->state_of(0.0, q, v);
+    } catch (const ContactError& e) {
+      throw InvalidInput(model.ir().source_path + ": inconsistent initial state: " + e.what());
+    }
+    // Velocities left at zero (not given) are completed from J v = 0 without
+    // a word; a velocity given and changed is announced.
+    const std::string moved = moves(q0, q, c.position_columns, c.position_units, false);
+    const std::string moved_rates = moves(v0, v, c.velocity_columns, c.velocity_units, true);
+    if (!moved.empty() || !moved_rates.empty()) {
+      std::string text = "the initial state does not close the loops and was projected onto them:";
+      if (!moved.empty()) text += " positions: " + moved + ";";
+      if (!moved_rates.empty()) text += " velocities: " + moved_rates + ";";
+      if (request.strict) throw InvalidInput(model.ir().source_path + ": " + text + " (--strict)");
+      notices_.push_back(text);
+    }
+    layout_.columns.push_back("t");
+    layout_.units.push_back("s");
+    for (int i = 0; i < c.nq; ++i) {
+      layout_.columns.push_back(c.position_columns[i]);
+      layout_.units.push_back(c.position_units[i]);
+    }
+    for (int i = 0; i < c.nv; ++i) {
+      layout_.columns.push_back(c.velocity_columns[i]);
+      layout_.units.push_back(c.velocity_units[i]);
+    }
+    layout_.columns.push_back("loop_residual");
+    layout_.units.push_back("m");
+    variant_ = augmented ? "augmented formulation" : "partitioned formulation";
+  }
+
+  OdeSystem& system() override { return *system_; }
+
+  void row(double t, const Eigen::VectorXd& y, std::vector<double>& values, Eigen::VectorXd* q,
+           Eigen::VectorXd* qd) override {
+    system_->full_state(t, y, q_, v_);
+    values[0] = t;
+    std::size_t k = 1;
+    for (Eigen::Index i = 0; i < q_.size(); ++i) values[k++] = q_[i];
+    for (Eigen::Index i = 0; i < v_.size(); ++i) values[k++] = v_[i];
+    values[k] = system_->closure().residual(q_.data());
+    if (q != nullptr) {
+      *q = q_;
+      *qd = v_;
+    }
+  }
+
+  void full_state(double t, const Eigen::VectorXd& y, Eigen::VectorXd& q, Eigen::VectorXd& qd) override {
+    system_->full_state(t, y, q, qd);
+  }
+
+  Eigen::VectorXd state_of(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override {
+    const RigidCoordinates& c = model_.coordinates();
+    if (q.size() != c.nq || qd.size() != c.nv)
+      throw InvalidInput("the state has " + std::to_string(q.size()) + " / " + std::to_string(qd.size()) +
+                         " coordinates, expected " + std::to_string(c.nq) + " / " + std::to_string(c.nv) +
+                         " (position / velocity coordinates)");
+    Eigen::VectorXd qc = q, vc = qd;
+    system_->make_consistent(t, qc, vc);
+    return system_->state_of(t, qc, vc);
+  }
+
+  std::optional<StepLimit> stable_limit(const IntegratorSpec&) override { return std::nullopt; }
+
+ private:
+  /// "coupler by -0.0012 rad, rod_qw by +1e-05": what the projection moved.
+  static std::string moves(const Eigen::VectorXd& before, const Eigen::VectorXd& after,
+                           const std::vector<std::string>& names, const std::vector<std::string>& units,
+                           bool given_only) {
+    std::ostringstream os;
+    os.precision(6);
+    for (Eigen::Index i = 0; i < before.size(); ++i) {
+      if (given_only && before[i] == 0.0) continue;
+      const double moved = after[i] - before[i];
+      if (!(std::abs(moved) > kProjectionNoise * (1.0 + std::abs(before[i])))) continue;
+      if (os.tellp() > 0) os << ", ";
+      os << names[i] << " by " << std::showpos << moved << std::noshowpos;
+      if (units[i] != "1") os << " " << units[i];
+    }
+    return os.str();
+  }
+
+  const AssembledModel& model_;
+  std::unique_ptr<LoopSystem> system_;
+  Eigen::VectorXd q_, v_;
+};
+
+}  // namespace
+
+std::unique_ptr<ModelRun> make_loop_run(const AssembledModel& model, const SimulationRequest& request) {
+  if (request.static_start.value_or(model.ir().initial.static_start))
+    throw InvalidRequest("static_start", "static is not available for a model with closed loops yet ('" +
+                                             model.ir().name + "'); start from `initial:` as written");
+  return std::make_unique<LoopRun>(model, request);
+}
+
+}  // namespace mbfe::runtime::detail

@@ -1,0 +1,63 @@
+// `mbfe simulate` and `mbfe stability` on spatial models and closed loops from
+// the command line: an implicit integrator keeps the loops closed, and what
+// is not available yet is refused with a message (exit 2).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <string>
+
+#include "tests/support/cli.h"
+#include "tests/support/process.h"
+
+namespace mbfe {
+namespace {
+
+TEST(SimulateSpatial, ImplicitIntegratorsKeepTheLoopsClosed) {
+  // Newton closes the loops at every evaluation, whatever the integrator.
+  constexpr double kRoundOffResidual = 1e-12;  // m
+  const test::TempDir dir;
+  for (const char* integrator : {"trapezoid", "bdf2"}) {
+    SCOPED_TRACE(integrator);
+    const std::string out = (dir / (std::string(integrator) + ".csv")).string();
+    const test::CliRun r =
+        test::run_cli(std::string("simulate models/four_bar.yaml --integrator ") + integrator + " --t-end 0.5 --out " + out);
+    ASSERT_EQ(r.status, 0) << r.all();
+    EXPECT_NE(r.err.find("(partitioned formulation)"), std::string::npos) << r.err;
+    const test::Csv csv = test::read_csv(out);
+    const int residual = csv.column("loop_residual");
+    ASSERT_GE(residual, 0);
+    double worst = 0.0;
+    for (const auto& row : csv.rows) worst = std::max(worst, row[static_cast<std::size_t>(residual)]);
+    EXPECT_LT(worst, kRoundOffResidual);
+  }
+}
+
+TEST(SimulateSpatial, WhatIsNotAvailableYetIsRefused) {
+  const test::TempDir dir;
+  const std::string tumbler = (dir / "tumbler.yaml").string();
+  std::ofstream(tumbler) << "model: tumbler\ndimension: 3\ngravity: [0, 0, 0]\nbodies:\n"
+                            "  - {name: box, parent: ground, joint: {type: free}, mass: 2, inertia: [1, 1, 1, 0, 0, 0]}\n";
+  struct Case {
+    std::string command, message;
+  };
+  const Case cases[] = {
+      {"stability models/four_bar.yaml", "the linearisation of a model with closed loops (constraints:) is not available yet"},
+      {"stability " + tumbler, "the linearisation of a model with spherical or free joints (quaternions) is not available yet"},
+      {"simulate models/four_bar.yaml --start static --out /dev/null",
+       "--start static is not available for a model with closed loops yet ('four_bar')"},
+      {"simulate " + tumbler + " --start static --out /dev/null",
+       "a static start is not available for a model with spherical or free joints (quaternions) yet"},
+      {"simulate models/double_pendulum_3d.yaml --formulation augmented --out /dev/null",
+       "--formulation applies to coupled models (bodies, beams and contacts) and models with closed loops"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.command);
+    const test::CliRun r = test::run_cli(c.command);
+    EXPECT_EQ(r.status, 2) << r.all();
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace mbfe
