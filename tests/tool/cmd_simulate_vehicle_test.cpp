@@ -51,6 +51,43 @@ initial: {q: {arm: -1.0}, static: true}
   EXPECT_EQ(given.status, 0) << given.all();
 }
 
+TEST(SimulateVehicle, StaticStartOfAFineOrStiffDeckFindsTheClosedFormSag) {
+  // The moving-mass bridge meshed finely (and stiffened), original model: a
+  // mesh-convergence study's runs. The wheel stands on the left support, so
+  // the midspan sag is the deck's own weight's, 5 q L^4 / (384 E I) (Hermite
+  // elements are exact at the nodes under a uniform load).
+  constexpr double kL = 20.0, kE = 2.1e11, kArea = 0.01, kRho = 7850.0, kG = 9.81;
+  // Newton stops at its round-off floor, ~1e-9 of the coordinates.
+  constexpr double kSagTol = 1e-7;
+  TempDir dir;
+  const fs::path csv = dir / "fine.csv";
+  for (const auto& [elements, inertia] : {std::pair{160, 1.0e-4}, std::pair{160, 1.0e-2}, std::pair{90, 1.0e-4}}) {
+    std::ostringstream flags;
+    flags << " --set beams.deck.elements=" << elements << " --set beams.deck.section.inertia=" << inertia;
+    const CliRun r = run_cli("simulate models/bridge_moving_mass.yaml --adjust off --step 1e-8 --t-end 1e-8 --quiet" +
+                             flags.str() + " --probe deck@10 --out " + quote(csv.string()));
+    ASSERT_EQ(r.status, 0) << flags.str() << "\n" << r.all();
+    EXPECT_EQ(r.err.find("mechanism"), std::string::npos) << r.err;
+    const Csv c = read_csv(csv.string());
+    ASSERT_GE(c.rows.size(), 1u);
+    const double sag = 5.0 * kRho * kArea * kG * std::pow(kL, 4) / (384.0 * kE * inertia);
+    EXPECT_NEAR(c.rows[0][static_cast<std::size_t>(c.column("deck@10"))], -sag, kSagTol * sag) << flags.str();
+  }
+}
+
+TEST(SimulateVehicle, AStructureTooSoftForItsLoadsIsNotCalledAMechanism) {
+  // E entered in GPa: the deck sags 7.6e7 m under its own weight, and the
+  // first Newton step carries the tyre's contact away. The wheel was held
+  // at the start; the message says what happened instead of "mechanism".
+  TempDir dir;
+  const CliRun r = run_cli("simulate models/bridge_moving_mass.yaml --adjust off --set "
+                           "beams.deck.material.youngs_modulus=210 --quiet --out " +
+                           quote((dir / "soft.csv").string()));
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_EQ(r.err.find("mechanism"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Newton lost hold of 'wheel' after 1 iteration"), std::string::npos) << r.err;
+}
+
 TEST(SimulateVehicle, AnInconsistentInitialStateIsAnnouncedOrRefused) {
   // The double pendulum on the beam, its tip lifted off the beam by turning link1.
   TempDir dir;
