@@ -52,6 +52,17 @@ constexpr double kDenseStallResidualReduction = 1e-5;
 // columns, stays one under any such scaling.
 constexpr int kEquilibrationSweeps = 4;
 
+/// The mechanism found at the start: `coordinate` indexes the unknowns.
+class MechanismError : public std::runtime_error {
+ public:
+  MechanismError(const std::string& message, std::size_t coordinate)
+      : std::runtime_error(message), coordinate_(coordinate) {}
+  std::size_t coordinate() const { return coordinate_; }
+
+ private:
+  std::size_t coordinate_;
+};
+
 }  // namespace
 
 StaticSolution solve_static(const StaticResidualFn& residual, const Eigen::VectorXd& x0,
@@ -108,6 +119,7 @@ StaticSolution solve_static(const StaticResidualFn& residual, const Eigen::Vecto
         os << "the structure is a mechanism: nothing holds '" << names[static_cast<std::size_t>(worst)]
            << "' in place (the static stiffness has rank " << qr.rank() << " of " << n
            << "); support it, or start from `initial:` as written";
+        throw MechanismError(os.str(), static_cast<std::size_t>(worst));
       } else {
         // Held at the start, let go on the way: the Newton steps moved the
         // structure so far that a contact no longer touches (or no longer
@@ -152,9 +164,41 @@ std::vector<int> free_indices(int n, const std::vector<int>& driven) {
   return out;
 }
 
-[[noreturn]] void static_start_failed(const ir::Model& model, const std::exception& e) {
-  throw ir::ModelError(model.source_path, model.initial.loc,
-                       "static start of model '" + model.name + "': " + e.what());
+/// Whether `body` and every body it carries have no mass and no inertia.
+bool carries_no_mass(const ir::Model& model, std::size_t body) {
+  const ir::Body& b = model.bodies[body];
+  const bool zero3 = std::all_of(b.inertia3.begin(), b.inertia3.end(), [](double v) { return v == 0.0; });
+  if (b.mass != 0.0 || b.inertia != 0.0 || !zero3) return false;
+  for (std::size_t k = 0; k < model.bodies.size(); ++k)
+    if (model.bodies[k].parent == static_cast<int>(body) && !carries_no_mass(model, k)) return false;
+  return true;
+}
+
+/// The body whose joint owns the coordinate `name` ("wheel", or "body_x" of a
+/// joint of several coordinates), -1 when none.
+int body_of_coordinate(const ir::Model& model, const std::string& name) {
+  for (std::size_t k = 0; k < model.bodies.size(); ++k) {
+    const std::string& body = model.bodies[k].name;
+    if (name == body || (name.size() > body.size() && name.compare(0, body.size(), body) == 0 && name[body.size()] == '_'))
+      return static_cast<int>(k);
+  }
+  return -1;
+}
+
+[[noreturn]] void static_start_failed(const ir::Model& model, const std::exception& e,
+                                      const std::vector<std::string>& names) {
+  std::string what = e.what();
+  // A coordinate without stiffness whose body carries no mass: its
+  // acceleration, the residual, is not defined, which is not a mechanism.
+  if (const auto* mechanism = dynamic_cast<const MechanismError*>(&e)) {
+    const std::string& name = names[mechanism->coordinate()];
+    const int body = body_of_coordinate(model, name);
+    if (body >= 0 && carries_no_mass(model, static_cast<std::size_t>(body)))
+      what = "'" + name + "' moves no mass: body '" + model.bodies[static_cast<std::size_t>(body)].name +
+             "' and every body it carries have mass 0 and inertia 0, so its acceleration is not defined; give it a "
+             "mass or inertia, or drive its joint";
+  }
+  throw ir::ModelError(model.source_path, model.initial.loc, "static start of model '" + model.name + "': " + what);
 }
 
 }  // namespace
@@ -181,7 +225,7 @@ void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::V
     const StaticSolution solution = solve_static(residual, x0, names);
     for (std::size_t k = 0; k < unknown.size(); ++k) q[unknown[k]] = solution.x[k];
   } catch (const std::runtime_error& e) {
-    static_start_failed(model, e);
+    static_start_failed(model, e, names);
   }
 }
 
@@ -205,7 +249,7 @@ void rigid_static_state(const ir::Model& model, RigidSystem& system, Eigen::Vect
     const StaticSolution solution = solve_static(residual, x0, names);
     for (std::size_t k = 0; k < unknown.size(); ++k) y[unknown[k]] = solution.x[k];
   } catch (const std::runtime_error& e) {
-    static_start_failed(model, e);
+    static_start_failed(model, e, names);
   }
 }
 

@@ -88,6 +88,19 @@ TEST(SimulateVehicle, AStructureTooSoftForItsLoadsIsNotCalledAMechanism) {
   EXPECT_NE(r.err.find("Newton lost hold of 'wheel' after 1 iteration"), std::string::npos) << r.err;
 }
 
+TEST(SimulateVehicle, AZeroMassWheelIsNotCalledAMechanism) {
+  // The tyre holds the wheel; with mass 0 its acceleration is undefined.
+  TempDir dir;
+  const CliRun r = run_cli("simulate models/bridge_moving_mass.yaml --set bodies.wheel.mass=0 --quiet --out " +
+                           quote((dir / "m0.csv").string()));
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_EQ(r.err.find("mechanism"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bridge_moving_mass.yaml:39:19: static start of model 'bridge_moving_mass': 'wheel' moves no "
+                       "mass: body 'wheel' and every body it carries have mass 0 and inertia 0"),
+            std::string::npos)
+      << r.err;
+}
+
 TEST(SimulateVehicle, AnInconsistentInitialStateIsAnnouncedOrRefused) {
   // The double pendulum on the beam, its tip lifted off the beam by turning link1.
   TempDir dir;
