@@ -148,6 +148,7 @@ py::list tallies(const rt::SimulationReport& report) {
     d["name"] = s.name;
     d["lift_offs"] = s.lift_offs;
     d["time_off"] = s.time_off;
+    d["touched"] = s.touched;
     out.append(d);
   }
   return out;

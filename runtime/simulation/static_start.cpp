@@ -185,9 +185,42 @@ int body_of_coordinate(const ir::Model& model, const std::string& name) {
   return -1;
 }
 
+/// Why the slider_spring contacts of the body owning the coordinate `name`
+/// hold nothing at the state `dyn` was last evaluated at: "; its contact
+/// 'tyre' is not over its beam at the start (s = -3 m; the beam spans 0 to 20
+/// m)" or "... is 5 m clear of its beam at the start"; empty when one of them
+/// touches (or the body has none).
+std::string contact_hint(const ir::Model& model, const CoupledDynamics& dyn, const std::string& name) {
+  const int body = body_of_coordinate(model, name);
+  if (body < 0) return "";
+  std::ostringstream os;
+  int k = -1;
+  for (const ir::Contact& c : model.contacts) {
+    if (c.type != ir::ContactType::kSliderSpring) continue;
+    ++k;
+    if (c.body != body) continue;
+    const SpringContactState& st = dyn.spring_state(k);
+    if (st.on_beam && st.delta > 0.0) return "";
+    const ir::Beam& beam = model.beams[static_cast<std::size_t>(c.beam)];
+    os << "; its contact '" << c.name << "' ";
+    if (!st.on_beam)
+      os << "is not over its beam at the start (s = " << st.s << " m; beam '" << beam.name << "' spans 0 to "
+         << beam.length << " m)";
+    else
+      os << "does not press on beam '" << beam.name << "' at the start (gap " << std::max(-st.delta, 0.0) + 0.0  // never "-0"
+         << " m; the beam points (" << std::cos(beam.angle) << ", " << std::sin(beam.angle) << "))";
+  }
+  const std::string hint = os.str();
+  return hint.empty() ? "" : hint + " (check the beam's origin and angle, in rad, and the body's position)";
+}
+
 [[noreturn]] void static_start_failed(const ir::Model& model, const std::exception& e,
-                                      const std::vector<std::string>& names) {
+                                      const std::vector<std::string>& names, const std::string& hint = "") {
   std::string what = e.what();
+  if (!hint.empty()) {
+    const auto cut = what.find(" in place (");
+    if (cut != std::string::npos) what.insert(cut + std::string(" in place").size(), hint);
+  }
   // A coordinate without stiffness whose body carries no mass: its
   // acceleration, the residual, is not defined, which is not a mechanism.
   if (const auto* mechanism = dynamic_cast<const MechanismError*>(&e)) {
@@ -225,7 +258,13 @@ void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::V
     const StaticSolution solution = solve_static(residual, x0, names);
     for (std::size_t k = 0; k < unknown.size(); ++k) q[unknown[k]] = solution.x[k];
   } catch (const std::runtime_error& e) {
-    static_start_failed(model, e, names);
+    std::string hint;
+    if (const auto* mechanism = dynamic_cast<const MechanismError*>(&e)) {
+      Eigen::VectorXd r0;
+      residual(x0, r0);  // the contacts' states at the start
+      hint = contact_hint(model, dyn, names[mechanism->coordinate()]);
+    }
+    static_start_failed(model, e, names, hint);
   }
 }
 

@@ -101,6 +101,37 @@ TEST(SimulateVehicle, AZeroMassWheelIsNotCalledAMechanism) {
       << r.err;
 }
 
+TEST(SimulateVehicle, AVehicleThatNeverTouchesItsBeamIsWarnedAbout) {
+  // `angle: 180` meant as degrees: the deck points down and to the left, the
+  // wheel never rides on it and falls; the run completes (exit 0) but says so.
+  TempDir dir;
+  const fs::path csv = dir / "fall.csv";
+  const std::string run = "simulate models/bridge_moving_mass.yaml --set beams.deck.angle=180 --t-end 0.2 --quiet --out " +
+                          quote(csv.string());
+  const CliRun given = run_cli(run + " --start given");
+  EXPECT_EQ(given.status, 0) << given.all();
+  EXPECT_NE(given.err.find("warning: beam 'deck': angle = 180 rad is more than a turn: degrees entered as rad?"),
+            std::string::npos)
+      << given.err;
+  EXPECT_NE(given.err.find("mbfe: warning: contact 'tyre' never touched the beam during the run"), std::string::npos)
+      << given.err;
+  const std::string meta = slurp(csv.string() + ".json");
+  EXPECT_NE(meta.find("\"touched\": false"), std::string::npos) << meta;
+  EXPECT_NE(meta.find("contact 'tyre' never touched the beam during the run"), std::string::npos) << meta;
+  // The static start names the contact that holds nothing.
+  const CliRun fixed = run_cli(run);
+  EXPECT_EQ(fixed.status, 2) << fixed.all();
+  EXPECT_NE(fixed.err.find("nothing holds 'wheel' in place; its contact 'tyre' does not press on beam 'deck' at the "
+                           "start (gap 0 m; the beam points (-0.59846, -0.801153))"),
+            std::string::npos)
+      << fixed.err;
+  // The shipped crossing touches, and says nothing of it.
+  const CliRun crossing = run_cli("simulate models/bridge_moving_mass.yaml --quiet --out " + quote(csv.string()));
+  EXPECT_EQ(crossing.status, 0) << crossing.all();
+  EXPECT_EQ(crossing.err.find("warning"), std::string::npos) << crossing.err;
+  EXPECT_NE(slurp(csv.string() + ".json").find("\"touched\": true"), std::string::npos);
+}
+
 TEST(SimulateVehicle, AnInconsistentInitialStateIsAnnouncedOrRefused) {
   // The double pendulum on the beam, its tip lifted off the beam by turning link1.
   TempDir dir;
