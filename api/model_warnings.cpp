@@ -43,10 +43,30 @@ std::string where(const ir::Model& model, ir::SourceLoc loc) {
   return w + ": warning: ";
 }
 
+
+/// Whether `body` and every body it carries have no mass and no inertia.
+bool carries_no_mass(const ir::Model& model, std::size_t body) {
+  const ir::Body& b = model.bodies[body];
+  for (double v : b.inertia3)
+    if (v != 0.0) return false;
+  if (b.mass != 0.0 || b.inertia != 0.0) return false;
+  for (std::size_t k = 0; k < model.bodies.size(); ++k)
+    if (model.bodies[k].parent == static_cast<int>(body) && !carries_no_mass(model, k)) return false;
+  return true;
+}
+
 }  // namespace
 
 std::vector<std::string> model_warnings(const ir::Model& model) {
   std::vector<std::string> out;
+  // A free joint that moves no mass: M is singular, the run cannot start.
+  for (std::size_t k = 0; k < model.bodies.size(); ++k) {
+    const ir::Body& b = model.bodies[k];
+    if (!b.joint.motion && carries_no_mass(model, k))
+      out.push_back(where(model, b.loc) + "body '" + b.name +
+                    "': its joint moves no mass (it and every body it carries have mass 0 and inertia 0), so its "
+                    "acceleration is not defined: give it a mass or inertia, or drive the joint");
+  }
   constexpr double kSteelE = 2.1e11, kSteelDensity = 7850.0, kSpan = 20.0;
   for (const ir::Beam& b : model.beams) {
     const std::string head = where(model, b.loc) + "beam '" + b.name + "': ";

@@ -1,6 +1,6 @@
 // Warnings about input that is valid but likely not what was meant: a beam's
 // Young's modulus, density or length off by a unit factor, an angle of more
-// than a turn (degrees entered as radians) (docs/robustness.md,
+// than a turn (degrees entered as radians), a free joint that moves no mass (docs/robustness.md,
 // "Warnings"), and after a run the slider_spring contacts that never touched
 // their beam. A warning never stops a run; `mbfe simulate` prints each on
 // stderr and lists them under "warnings" in the run's sidecar.
@@ -30,7 +30,8 @@ inline constexpr PlausibleRange kPlausibleDensity{50.0, 3e4};
 /// m: a 1 mm specimen to a 10 km line.
 inline constexpr PlausibleRange kPlausibleBeamLength{1e-3, 1e4};
 
-/// One line per implausible value, `file:line:col: warning: beam 'deck': E =
+/// One line per body whose free joint moves no mass (it and every body it
+/// carries have mass 0 and inertia 0), then one per implausible value, `file:line:col: warning: beam 'deck': E =
 /// 210 Pa is 1e9 times below steel's 2.1e11 Pa: GPa entered as Pa?`, in
 /// file order; empty for a plausible model.
 std::vector<std::string> model_warnings(const ir::Model& model);

@@ -60,6 +60,27 @@ TEST(ModelWarnings, DensityLengthAndAngle) {
       << degrees[0];
 }
 
+TEST(ModelWarnings, AFreeJointThatMovesNoMass) {
+  // A massless arm carrying a massless tip: nothing gives the joint inertia.
+  // Driven, or carrying a mass, it is a valid fictitious body.
+  const auto model = [](const std::string& tip_mass, const std::string& motion) {
+    return frontend::parse_model_text(
+        "model: m\nbodies:\n  - {name: arm, parent: ground, joint: {type: revolute" + motion +
+            "}, mass: 0, inertia: 0}\n  - {name: tip, parent: arm, joint: {type: revolute, at: [1, 0]}, mass: " +
+            tip_mass + ", inertia: 0, com: [0.5, 0]}\n",
+        "m.yaml");
+  };
+  const std::vector<std::string> both = model_warnings(model("0", ""));
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_EQ(both[0], "m.yaml:3:5: warning: body 'arm': its joint moves no mass (it and every body it carries have mass 0 "
+                     "and inertia 0), so its acceleration is not defined: give it a mass or inertia, or drive the joint");
+  EXPECT_NE(both[1].find("body 'tip': its joint moves no mass"), std::string::npos) << both[1];
+  EXPECT_TRUE(model_warnings(model("1", "")).empty());
+  const std::vector<std::string> driven = model_warnings(model("0", ", motion: \"t\""));
+  ASSERT_EQ(driven.size(), 1u);
+  EXPECT_NE(driven[0].find("body 'tip'"), std::string::npos) << driven[0];
+}
+
 TEST(ModelWarnings, NoShippedModelWarns) {
   int models = 0;
   for (const auto& entry : fs::recursive_directory_iterator(fs::path(MBFE_SOURCE_DIR) / "models")) {
