@@ -36,7 +36,8 @@ inline constexpr PlausibleRange kPlausibleBeamLength{1e-3, 1e4};
 /// file order; empty for a plausible model.
 std::vector<std::string> model_warnings(const ir::Model& model);
 
-/// The warnings of a finished run: "contact 'X' never touched the beam
+/// The warnings of a completed run (none for a run that diverged, failed or
+/// was interrupted): "contact 'X' never touched the beam
 /// during the run" for each slider_spring contact that never touched its
 /// beam while its point was over it, or whose body touched no beam at all
 /// during the run (a vehicle falling past the bridge). Not for a contact
