@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "api/json_text.h"
+#include "api/model_warnings.h"
 
 namespace mbfe {
 
@@ -57,12 +58,16 @@ nlohmann::json run_record(const Model& model, const runtime::SimulationRequest& 
                    {"factorizations", report.run.newton.factorizations}};
   nlohmann::json springs = nlohmann::json::array();
   for (const runtime::SpringContactTally& c : report.springs)
-    springs.push_back({{"name", c.name}, {"lift_offs", c.lift_offs}, {"time_off", c.time_off}});
+    springs.push_back({{"name", c.name}, {"lift_offs", c.lift_offs}, {"time_off", c.time_off}, {"touched", c.touched}});
   if (!springs.empty()) j["springs"] = springs;
   nlohmann::json links = nlohmann::json::array();
   for (const runtime::LinkSlackTally& l : report.links)
     links.push_back({{"name", l.name}, {"slackenings", l.slackenings}, {"time_slack", l.time_slack}});
   if (!links.empty()) j["links"] = links;
+  nlohmann::json warnings = nlohmann::json::array();
+  for (const std::string& w : model_warnings(model.ir())) warnings.push_back(w);
+  for (const std::string& w : run_warnings(model.ir(), report)) warnings.push_back(w);
+  j["warnings"] = warnings;
   if (report.adjustment_estimate) j["adjustment_estimate"] = adjustment_estimate_json(*report.adjustment_estimate);
   return j;
 }

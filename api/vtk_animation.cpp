@@ -97,7 +97,10 @@ double VtkAnimation::slope_at(const runtime::OutputRow& row, std::size_t beam, d
 
 void VtkAnimation::row(const runtime::OutputRow& row) {
   if (row.t + 1e-9 * interval_ < next_) return;
-  next_ = row.t + interval_;
+  // The next frame at the next multiple of the interval, not one interval
+  // after this row: rows that do not fall on the multiples would otherwise
+  // push every later frame a little further, and the last one short of t_end.
+  next_ = (std::floor(row.t / interval_ + 1e-9) + 1.0) * interval_;
   char name[32];
   std::snprintf(name, sizeof name, "frame_%06d.vtp", frames_written());
   const std::string file = (fs::path("frames") / name).string();

@@ -131,7 +131,7 @@ ir::SweepCollect parse_collect(const MapView& view) {
 }
 
 void parse_simulation(const MapView& view, ir::SweepSimulation& sim) {
-  view.allow({"integrator", "step", "t_end", "probes", "adjust"});
+  view.allow({"integrator", "step", "t_end", "probes", "adjust", "full_state"});
   if (const Field* f = view.find("integrator")) sim.integrator = view.text(*f);
   if (const Field* f = view.find("step")) sim.step = view.positive(*f);
   if (const Field* f = view.find("t_end")) sim.t_end = view.positive(*f);
@@ -147,6 +147,7 @@ void parse_simulation(const MapView& view, ir::SweepSimulation& sim) {
     }
   }
   if (const Field* f = view.find("adjust")) sim.adjust = view.choice(*f, {"on", "off"}) == 0 ? "on" : "off";
+  if (const Field* f = view.find("full_state")) sim.full_state = view.boolean(*f);
 }
 
 /// The node the keys lead to in `root`, or an error naming the first key that does not.

@@ -36,6 +36,10 @@ struct SweepSimulation {
   double t_end = 0.0;      // s; 0: the model's
   std::vector<std::string> probes;  // "beam@s"
   std::string adjust;      // "", "on" or "off"
+  /// run.csv keeps every beam coordinate and rate; false (the default): the
+  /// other columns only (probes, rigid coordinates, contact forces, ...), the
+  /// statistics still taken over every column.
+  bool full_state = false;
 };
 
 struct Sweep {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "api/model_warnings.h"
 #include "api/simulator.h"
 #include "ir/coordinate_layout.h"
 
@@ -51,6 +52,7 @@ struct Result {
   std::vector<std::string> columns, units, notices;
   std::map<std::string, py::array_t<double>> arrays;
   std::string status, message, variant;
+  std::vector<std::string> warnings;  // as the sidecar's (api/model_warnings.h)
   long steps = 0;
   double t_reached = 0.0, wall_seconds = 0.0;
   py::list springs, links;
@@ -149,6 +151,7 @@ py::list tallies(const rt::SimulationReport& report) {
     d["name"] = s.name;
     d["lift_offs"] = s.lift_offs;
     d["time_off"] = s.time_off;
+    d["touched"] = s.touched;
     out.append(d);
   }
   return out;
@@ -239,6 +242,8 @@ Result simulate(const Model& m, const std::string& integrator, std::optional<dou
     report = m.simulate(r, rows, signal_monitor(caught, true));
   }
   Result out = result_of(rows, report);
+  out.warnings = mbfe::model_warnings(m.ir());
+  for (const std::string& w : mbfe::run_warnings(m.ir(), report)) out.warnings.push_back(w);
   if (caught) {
     // Ctrl-C: the interpreter's KeyboardInterrupt, carrying the rows so far.
     caught->value().attr("result") = py::cast(out);
@@ -302,7 +307,9 @@ PYBIND11_MODULE(mbfe, module) {
       .def_readonly("t_reached", &Result::t_reached)
       .def_readonly("wall_seconds", &Result::wall_seconds)
       .def_readonly("notices", &Result::notices)
-      .def_readonly("springs", &Result::springs, "per slider_spring: name, lift_offs, time_off")
+      .def_readonly("warnings", &Result::warnings,
+                    "likely unit mistakes of the model and contacts that never touched their beam (as the sidecar's)")
+      .def_readonly("springs", &Result::springs, "per slider_spring: name, lift_offs, time_off, touched")
       .def_readonly("links", &Result::links, "per link that can go slack: name, slackenings, time_slack")
       .def_readonly("adjustment_estimate", &Result::adjustment_estimate,
                     "adjusted runs: what the adjustment changes where forces act (points, max, where, "

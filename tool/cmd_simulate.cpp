@@ -15,6 +15,7 @@
 #include "tool/file_checks.h"
 #include "tool/interrupt_guard.h"
 #include "tool/progress_line.h"
+#include "api/model_warnings.h"
 #include "api/results_output.h"
 #include "api/run_record.h"
 #include "api/vtk_animation.h"
@@ -244,6 +245,8 @@ int cmd_simulate(const Args& args) {
   load.quiet = parsed.has("quiet");
   load.overrides = model_overrides(parsed);
   const Model model = Model::load(model_path, load);
+  // Likely unit mistakes, before a run that may take long (and again in the sidecar).
+  for (const std::string& w : model_warnings(model.ir())) std::cerr << w << "\n";
   runtime::SimulationRequest request = request_of(parsed, model);
   std::unique_ptr<VtkAnimation> vtk;
   if (vtk_dir) {
@@ -315,6 +318,7 @@ int cmd_simulate(const Args& args) {
                 << model.ir().name << ".pvd\n";
   }
   nlohmann::json record = run_record(model, request, report, results.layout(), csv.rows());
+  for (const std::string& w : run_warnings(model.ir(), report)) std::cerr << "mbfe: warning: " << w << "\n";
   if (check_until && report.message.empty()) {
     const AdjustmentCheck check = check_adjustment(model, request, kept, *check_until);
     record["adjustment_check"] = adjustment_check_json(check);

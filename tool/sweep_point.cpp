@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -54,13 +55,38 @@ void write_atomically(const fs::path& p, const std::string& text) {
   fs::rename(tmp, p);
 }
 
-/// The run's rows into run.csv, and the statistics of the collected columns.
+/// Whether `column` is a beam's coordinate or its rate ("deck_w3",
+/// "deck_dw3_dot"): what a sweep's run.csv leaves out unless full_state.
+bool is_beam_coordinate(const ir::Model& model, const std::string& column) {
+  for (const ir::Beam& b : model.beams) {
+    for (const char* kind : {"_w", "_dw"}) {
+      const std::string head = b.name + kind;
+      if (column.size() <= head.size() || column.compare(0, head.size(), head) != 0) continue;
+      std::size_t k = head.size();
+      while (k < column.size() && std::isdigit(static_cast<unsigned char>(column[k]))) ++k;
+      if (k > head.size() && (k == column.size() || column.compare(k, std::string::npos, "_dot") == 0)) return true;
+    }
+  }
+  return false;
+}
+
+/// The run's rows into run.csv (without the beams' coordinates unless the
+/// sweep asks for full_state), and the statistics of the collected columns
+/// (over every column).
 class StatsObserver : public runtime::SimulationObserver {
  public:
-  StatsObserver(const ir::Sweep& sweep, ResultsOutput& csv) : sweep_(sweep), csv_(csv) {}
+  StatsObserver(const ir::Sweep& sweep, const ir::Model& model, ResultsOutput& csv)
+      : sweep_(sweep), model_(model), csv_(csv) {}
 
   void begin(const runtime::OutputLayout& layout) override {
-    csv_.header(layout.columns);
+    std::vector<std::string> kept_names;
+    for (std::size_t k = 0; k < layout.columns.size(); ++k)
+      if (sweep_.simulation.full_state || !is_beam_coordinate(model_, layout.columns[k])) {
+        kept_.push_back(k);
+        kept_names.push_back(layout.columns[k]);
+      }
+    csv_.header(kept_names);
+    kept_values_.resize(kept_.size());
     for (const ir::SweepCollect& c : sweep_.collect) {
       int index = -1;
       for (std::size_t k = 0; k < layout.columns.size(); ++k)
@@ -77,7 +103,12 @@ class StatsObserver : public runtime::SimulationObserver {
   }
 
   void row(const runtime::OutputRow& row) override {
-    csv_.row(row.values.data(), row.values.size());
+    if (kept_.size() == row.values.size()) {
+      csv_.row(row.values.data(), row.values.size());
+    } else {
+      for (std::size_t k = 0; k < kept_.size(); ++k) kept_values_[k] = row.values[kept_[k]];
+      csv_.row(kept_values_.data(), kept_values_.size());
+    }
     for (std::size_t k = 0; k < columns_.size(); ++k) {
       const double v = row.values[static_cast<std::size_t>(columns_[k])];
       Acc& a = acc_[k];
@@ -121,7 +152,10 @@ class StatsObserver : public runtime::SimulationObserver {
     long n = 0;
   };
   const ir::Sweep& sweep_;
+  const ir::Model& model_;
   ResultsOutput& csv_;
+  std::vector<std::size_t> kept_;     // the columns of run.csv, indices into a row
+  std::vector<double> kept_values_;
   std::vector<int> columns_;
   std::vector<Acc> acc_;
 };
@@ -150,6 +184,8 @@ std::string request_sha256(const ir::Sweep& sweep, const std::string& point_text
   j["model"] = point_text;
   j["simulate"] = {{"integrator", s.integrator}, {"step", s.step},       {"t_end", s.t_end},
                    {"probes", s.probes},         {"adjust", s.adjust}};
+  // Only when set, so that the requests of sweeps written before it keep their hash.
+  if (s.full_state) j["simulate"]["full_state"] = true;
   nlohmann::json collect = nlohmann::json::array();
   for (const ir::SweepCollect& c : sweep.collect)
     collect.push_back({{"name", c.name}, {"column", c.column}, {"stat", static_cast<int>(c.stat)}});
@@ -210,7 +246,7 @@ PointResult run_sweep_point(const ir::Sweep& sweep, const std::string& model_tex
     options.cache_by_sources = true;
     const Model model = Model::parse(text, model_file.string(), options);
     ResultsOutput csv((dir / "run.csv").string());
-    StatsObserver observer(sweep, csv);
+    StatsObserver observer(sweep, model.ir(), csv);
     const runtime::SimulationReport report = model.simulate(request_of(sweep, model), observer);
     csv.flush();
     r.stats = observer.stats();

@@ -96,21 +96,38 @@ void throw_singular_mass_matrix(const mbfe_model_v1& model,
   } else {
     os << " (M has non-finite entries: the state is not finite)";
   }
-  if (!coords.empty()) {
-    os << "; these coordinates move no mass: ";
-    for (std::size_t i = 0; i < coords.size(); ++i) os << (i ? ", " : "") << coords[i];
-  }
+  // A coordinate that moves no mass has a zero diagonal entry (every term of
+  // M_ii is a mass or inertia times a square); one with M_ii > 0 in the null
+  // direction moves mass, and M is singular only numerically: a state grown
+  // so large (a step beyond the stable limit) that M's spread of eigenvalues
+  // exceeds double precision, or a kinematic singularity.
+  std::vector<std::string> no_mass;
+  for (int i = 0; i < n; ++i)
+    if (M.allFinite() && !(M(i, i) > 0.0)) no_mass.push_back(coordinate_name(model, i));
   std::vector<std::string> massless;
   for (const BodyInertia& b : bodies) {
     if (b.mass == 0.0 && b.inertia == 0.0) massless.push_back(b.name);
   }
-  if (!massless.empty()) {
-    os << "; bodies with mass 0 and inertia 0: ";
-    for (std::size_t i = 0; i < massless.size(); ++i) os << (i ? ", " : "") << massless[i];
+  if (!no_mass.empty()) {
+    os << "; these coordinates move no mass: ";
+    for (std::size_t i = 0; i < no_mass.size(); ++i) os << (i ? ", " : "") << no_mass[i];
+    if (!massless.empty()) {
+      os << "; bodies with mass 0 and inertia 0: ";
+      for (std::size_t i = 0; i < massless.size(); ++i) os << (i ? ", " : "") << massless[i];
+    }
+    os << ". Give the bodies that these coordinates move a mass or inertia (massless, "
+          "fictitious bodies need a massive successor that moves with every one of their "
+          "coordinates), or constrain the coordinate.";
+  } else if (!coords.empty()) {
+    os << "; numerically only: ";
+    for (std::size_t i = 0; i < coords.size(); ++i) os << (i ? ", " : "") << coords[i];
+    os << " move mass (M's diagonal is positive), but at this state M's eigenvalues span more than double "
+          "precision holds. A state grown that far is usually a step beyond the integrator's stable limit: take "
+          "the step `mbfe advise` or `mbfe stability` gives; otherwise the mechanism is at a kinematic "
+          "singularity.";
+  } else {
+    os << ".";
   }
-  os << ". Give the bodies that these coordinates move a mass or inertia (massless, "
-        "fictitious bodies need a massive successor that moves with every one of their "
-        "coordinates), or constrain the coordinate.";
   throw SingularMassMatrixError(os.str(), t, std::move(coords), std::move(massless));
 }
 

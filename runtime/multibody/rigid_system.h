@@ -53,9 +53,12 @@ void evaluate_rigid_terms(const mbfe_model_v1& model, const Eigen::VectorXd& q,
                           const Eigen::VectorXd& qd, double t, RigidTerms& out);
 
 /// Message and exception for a mass matrix that is not positive definite at
-/// (t, M): names the coordinates in its (near) null space and the bodies of
-/// `bodies` with no mass and no inertia. Used by RigidSystem and the coupled
-/// systems.
+/// (t, M). A coordinate with M_ii = 0 moves no mass: the message names those
+/// and the bodies of `bodies` with no mass and no inertia, and asks for mass.
+/// A null direction whose coordinates all have M_ii > 0 is singular only
+/// numerically (a state grown far beyond the model's range, usually by a step
+/// beyond the stable limit): the message says so and points to `mbfe advise`.
+/// Used by RigidSystem and the coupled systems.
 [[noreturn]] void throw_singular_mass_matrix(const mbfe_model_v1& model,
                                              const std::vector<BodyInertia>& bodies,
                                              const Eigen::MatrixXd& M, double t);

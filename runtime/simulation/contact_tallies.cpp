@@ -31,6 +31,7 @@ void ContactTallies::count(double t, const CoupledDynamics& dynamics) {
     if (st.on_beam && !touching) c.time_off += t - t_prev_;
     if (c.seen && c.in_contact && !touching && st.on_beam) ++c.lift_offs;
     c.in_contact = touching;
+    c.touched = c.touched || (touching && st.on_beam);
     c.seen = c.seen || st.on_beam;
   }
   t_prev_ = t;

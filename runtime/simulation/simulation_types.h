@@ -111,7 +111,8 @@ struct SpringContactTally {
   int lift_offs = 0;        // transitions from delta > 0 to delta <= 0
   double time_off = 0.0;    // s with delta <= 0 while over the beam
   bool in_contact = false;  // at the last accepted step
-  bool seen = false;
+  bool seen = false;        // the point was over the beam at an accepted step
+  bool touched = false;     // delta > 0 over the beam at an accepted step
 };
 
 /// Slack events and time slack of a link over a run, counted on accepted

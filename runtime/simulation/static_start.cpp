@@ -38,10 +38,30 @@ constexpr double kStallResidualReduction = 1e-8;
 // ~1e13 for the rotations of 0.5 m beam elements, which alone is a condition
 // number the test would take for a mechanism.
 constexpr double kMechanismRcond = 1e-10;
+// The dense Newton's round-off floor: the residual is an acceleration, and a
+// fine mesh's rotations (stiffness-to-mass ratios ~1e13 1/s^2) turn the
+// round-off of the coordinates into residuals of ~1e-5 m/s^2, so updates
+// stall at ~1e-11 relative instead of falling below kStepTolerance (a 30 m
+// deck of 90 elements, original damping). An update below 1e-9 relative that
+// no longer halves, once the residual has fallen by 1e-5 from its scale at
+// the start, is that floor: the iterate is converged to its precision.
+constexpr double kDenseStallTolerance = 1e-9;
+constexpr double kDenseStallResidualReduction = 1e-5;
 // Row and column scalings (Ruiz's equilibration) that bring every row's and
 // column's largest entry to about 1; a mechanism, an exactly dependent set of
 // columns, stays one under any such scaling.
 constexpr int kEquilibrationSweeps = 4;
+
+/// The mechanism found at the start: `coordinate` indexes the unknowns.
+class MechanismError : public std::runtime_error {
+ public:
+  MechanismError(const std::string& message, std::size_t coordinate)
+      : std::runtime_error(message), coordinate_(coordinate) {}
+  std::size_t coordinate() const { return coordinate_; }
+
+ private:
+  std::size_t coordinate_;
+};
 
 }  // namespace
 
@@ -54,6 +74,7 @@ StaticSolution solve_static(const StaticResidualFn& residual, const Eigen::Vecto
   residual(out.x, r);
   const double scale = std::max(r.cwiseAbs().maxCoeff(), 1e-300);
   Eigen::MatrixXd J(r.size(), n);
+  double last_step = std::numeric_limits<double>::infinity();
   for (int it = 0; it < kMaxIterations; ++it) {
     out.iterations = it;
     out.residual = r.cwiseAbs().maxCoeff();
@@ -94,20 +115,37 @@ StaticSolution solve_static(const StaticResidualFn& residual, const Eigen::Vecto
       Eigen::Index worst = 0;
       svd.matrixV().col(n - 1).cwiseAbs().maxCoeff(&worst);
       std::ostringstream os;
-      os << "the structure is a mechanism: nothing holds '" << names[static_cast<std::size_t>(worst)]
-         << "' in place (the static stiffness has rank " << qr.rank() << " of " << n
-         << "); support it, or start from `initial:` as written";
+      if (it == 0) {
+        os << "the structure is a mechanism: nothing holds '" << names[static_cast<std::size_t>(worst)]
+           << "' in place (the static stiffness has rank " << qr.rank() << " of " << n
+           << "); support it, or start from `initial:` as written";
+        throw MechanismError(os.str(), static_cast<std::size_t>(worst));
+      } else {
+        // Held at the start, let go on the way: the Newton steps moved the
+        // structure so far that a contact no longer touches (or no longer
+        // finds its beam). Not a mechanism of the model as written.
+        os << "Newton lost hold of '" << names[static_cast<std::size_t>(worst)] << "' after " << it
+           << " iteration" << (it == 1 ? "" : "s") << " that moved the unknowns by up to "
+           << (out.x - x0).cwiseAbs().maxCoeff()
+           << " (m or rad): the equilibrium is too far from the start for the contacts to hold (a structure "
+              "far softer than its loads: check the units of E, density and lengths); start from `initial:` as "
+              "written";
+      }
       throw std::runtime_error(os.str());
     }
     const Eigen::VectorXd dx = qr.solve(r.cwiseQuotient(d_row)).cwiseQuotient(d_col);
     out.x -= dx;
     residual(out.x, r);
     if (!r.allFinite()) break;
-    if (dx.cwiseAbs().maxCoeff() <= kStepTolerance * (1.0 + out.x.cwiseAbs().maxCoeff())) {
+    const double step = dx.cwiseAbs().maxCoeff(), size = 1.0 + out.x.cwiseAbs().maxCoeff();
+    const bool stalled = step <= kDenseStallTolerance * size && step > 0.5 * last_step &&
+                         r.cwiseAbs().maxCoeff() <= kDenseStallResidualReduction * scale;
+    if (step <= kStepTolerance * size || stalled) {
       out.iterations = it + 1;
       out.residual = r.cwiseAbs().maxCoeff();
       return out;
     }
+    last_step = step;
   }
   std::ostringstream os;
   os << "the static equilibrium at t = 0 did not converge in " << kMaxIterations
@@ -126,9 +164,74 @@ std::vector<int> free_indices(int n, const std::vector<int>& driven) {
   return out;
 }
 
-[[noreturn]] void static_start_failed(const ir::Model& model, const std::exception& e) {
-  throw ir::ModelError(model.source_path, model.initial.loc,
-                       "static start of model '" + model.name + "': " + e.what());
+/// Whether `body` and every body it carries have no mass and no inertia.
+bool carries_no_mass(const ir::Model& model, std::size_t body) {
+  const ir::Body& b = model.bodies[body];
+  const bool zero3 = std::all_of(b.inertia3.begin(), b.inertia3.end(), [](double v) { return v == 0.0; });
+  if (b.mass != 0.0 || b.inertia != 0.0 || !zero3) return false;
+  for (std::size_t k = 0; k < model.bodies.size(); ++k)
+    if (model.bodies[k].parent == static_cast<int>(body) && !carries_no_mass(model, k)) return false;
+  return true;
+}
+
+/// The body whose joint owns the coordinate `name` ("wheel", or "body_x" of a
+/// joint of several coordinates), -1 when none.
+int body_of_coordinate(const ir::Model& model, const std::string& name) {
+  for (std::size_t k = 0; k < model.bodies.size(); ++k) {
+    const std::string& body = model.bodies[k].name;
+    if (name == body || (name.size() > body.size() && name.compare(0, body.size(), body) == 0 && name[body.size()] == '_'))
+      return static_cast<int>(k);
+  }
+  return -1;
+}
+
+/// Why the slider_spring contacts of the body owning the coordinate `name`
+/// hold nothing at the state `dyn` was last evaluated at: "; its contact
+/// 'tyre' is not over its beam at the start (s = -3 m; the beam spans 0 to 20
+/// m)" or "... is 5 m clear of its beam at the start"; empty when one of them
+/// touches (or the body has none).
+std::string contact_hint(const ir::Model& model, const CoupledDynamics& dyn, const std::string& name) {
+  const int body = body_of_coordinate(model, name);
+  if (body < 0) return "";
+  std::ostringstream os;
+  int k = -1;
+  for (const ir::Contact& c : model.contacts) {
+    if (c.type != ir::ContactType::kSliderSpring) continue;
+    ++k;
+    if (c.body != body) continue;
+    const SpringContactState& st = dyn.spring_state(k);
+    if (st.on_beam && st.delta > 0.0) return "";
+    const ir::Beam& beam = model.beams[static_cast<std::size_t>(c.beam)];
+    os << "; its contact '" << c.name << "' ";
+    if (!st.on_beam)
+      os << "is not over its beam at the start (s = " << st.s << " m; beam '" << beam.name << "' spans 0 to "
+         << beam.length << " m)";
+    else
+      os << "does not press on beam '" << beam.name << "' at the start (gap " << std::max(-st.delta, 0.0) + 0.0  // never "-0"
+         << " m; the beam points (" << std::cos(beam.angle) << ", " << std::sin(beam.angle) << "))";
+  }
+  const std::string hint = os.str();
+  return hint.empty() ? "" : hint + " (check the beam's origin and angle, in rad, and the body's position)";
+}
+
+[[noreturn]] void static_start_failed(const ir::Model& model, const std::exception& e,
+                                      const std::vector<std::string>& names, const std::string& hint = "") {
+  std::string what = e.what();
+  if (!hint.empty()) {
+    const auto cut = what.find(" in place (");
+    if (cut != std::string::npos) what.insert(cut + std::string(" in place").size(), hint);
+  }
+  // A coordinate without stiffness whose body carries no mass: its
+  // acceleration, the residual, is not defined, which is not a mechanism.
+  if (const auto* mechanism = dynamic_cast<const MechanismError*>(&e)) {
+    const std::string& name = names[mechanism->coordinate()];
+    const int body = body_of_coordinate(model, name);
+    if (body >= 0 && carries_no_mass(model, static_cast<std::size_t>(body)))
+      what = "'" + name + "' moves no mass: body '" + model.bodies[static_cast<std::size_t>(body)].name +
+             "' and every body it carries have mass 0 and inertia 0, so its acceleration is not defined; give it a "
+             "mass or inertia, or drive its joint";
+  }
+  throw ir::ModelError(model.source_path, model.initial.loc, "static start of model '" + model.name + "': " + what);
 }
 
 }  // namespace
@@ -155,7 +258,13 @@ void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::V
     const StaticSolution solution = solve_static(residual, x0, names);
     for (std::size_t k = 0; k < unknown.size(); ++k) q[unknown[k]] = solution.x[k];
   } catch (const std::runtime_error& e) {
-    static_start_failed(model, e);
+    std::string hint;
+    if (const auto* mechanism = dynamic_cast<const MechanismError*>(&e)) {
+      Eigen::VectorXd r0;
+      residual(x0, r0);  // the contacts' states at the start
+      hint = contact_hint(model, dyn, names[mechanism->coordinate()]);
+    }
+    static_start_failed(model, e, names, hint);
   }
 }
 
@@ -179,7 +288,7 @@ void rigid_static_state(const ir::Model& model, RigidSystem& system, Eigen::Vect
     const StaticSolution solution = solve_static(residual, x0, names);
     for (std::size_t k = 0; k < unknown.size(); ++k) y[unknown[k]] = solution.x[k];
   } catch (const std::runtime_error& e) {
-    static_start_failed(model, e);
+    static_start_failed(model, e, names);
   }
 }
 

@@ -172,6 +172,23 @@ class SameAsTheCommandLine(unittest.TestCase):
         with self.assertRaises(TypeError):
             mbfe.load(model("double_pendulum.yaml"), set={"bodies.link2.mass": [1, 2]})
 
+    def test_warnings_as_in_the_sidecar(self):
+        # `angle: 180` meant as degrees, started as written: the wheel falls
+        # past the deck; the same warnings as the command line's sidecar.
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "w.csv")
+            r = cli("simulate", model("bridge_moving_mass.yaml"), "--set", "beams.deck.angle=180", "--start", "given",
+                    "--t-end", "0.2", "--quiet", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(out + ".json") as f:
+                sidecar = json.load(f)
+        run = mbfe.load(model("bridge_moving_mass.yaml"), set={"beams.deck.angle": 180}).simulate(
+            t_end=0.2, static_start=False)
+        self.assertEqual(run.warnings, sidecar["warnings"])
+        self.assertEqual(len(run.warnings), 2)
+        self.assertIn("never touched the beam during the run", run.warnings[1])
+        self.assertFalse(run.springs[0]["touched"])
+
     def test_request_the_model_cannot_run(self):
         with self.assertRaises(ValueError):
             mbfe.load(model("double_pendulum.yaml")).simulate(probes=["deck@1"])

@@ -122,6 +122,31 @@ class Animation(unittest.TestCase):
         self.assertLess(dark, 0.2)       # on a white background
 
 
+class FrameTimes(unittest.TestCase):
+    def test_the_last_frame_is_at_t_end_when_the_interval_is_not_a_multiple_of_the_step(self):
+        # 1.2 s in steps of 1 ms, 200 frames: an interval of 1.2/199 s that no
+        # row falls on. Frames at the rows that first reach k * 1.2/199, the
+        # last one at t_end, and every one of the 200 (the interval is longer
+        # than a step).
+        tmp = tempfile.mkdtemp()
+        try:
+            out = os.path.join(tmp, "vtk")
+            r = subprocess.run([CLI, "simulate", os.path.join(SOURCE, "models", "bridge_moving_mass.yaml"),
+                                "--vtk", out, "--vtk-frames", "200", "--quiet"], capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            root = ET.parse(os.path.join(out, "bridge_moving_mass.pvd")).getroot()
+            times = [float(d.get("timestep")) for d in root.iter("DataSet")]
+            self.assertEqual(len(times), 200)
+            self.assertAlmostEqual(times[-1], 1.2, places=9)
+            interval = 1.2 / 199
+            for k, t in enumerate(times):
+                # the first row (1 ms apart) at or after k * interval
+                self.assertGreaterEqual(t, k * interval - 1e-9)
+                self.assertLess(t, k * interval + 1e-3)
+        finally:
+            shutil.rmtree(tmp)
+
+
 if __name__ == "__main__":
     unittest.main()
 

@@ -51,6 +51,97 @@ initial: {q: {arm: -1.0}, static: true}
   EXPECT_EQ(given.status, 0) << given.all();
 }
 
+TEST(SimulateVehicle, StaticStartOfAFineOrStiffDeckFindsTheClosedFormSag) {
+  // The moving-mass bridge meshed finely (and stiffened), original model: a
+  // mesh-convergence study's runs. The wheel stands on the left support, so
+  // the midspan sag is the deck's own weight's, 5 q L^4 / (384 E I) (Hermite
+  // elements are exact at the nodes under a uniform load).
+  constexpr double kL = 20.0, kE = 2.1e11, kArea = 0.01, kRho = 7850.0, kG = 9.81;
+  // Newton stops at its round-off floor, ~1e-9 of the coordinates.
+  constexpr double kSagTol = 1e-7;
+  TempDir dir;
+  const fs::path csv = dir / "fine.csv";
+  for (const auto& [elements, inertia] : {std::pair{160, 1.0e-4}, std::pair{160, 1.0e-2}, std::pair{90, 1.0e-4}}) {
+    std::ostringstream flags;
+    flags << " --set beams.deck.elements=" << elements << " --set beams.deck.section.inertia=" << inertia;
+    const CliRun r = run_cli("simulate models/bridge_moving_mass.yaml --adjust off --step 1e-8 --t-end 1e-8 --quiet" +
+                             flags.str() + " --probe deck@10 --out " + quote(csv.string()));
+    ASSERT_EQ(r.status, 0) << flags.str() << "\n" << r.all();
+    EXPECT_EQ(r.err.find("mechanism"), std::string::npos) << r.err;
+    const Csv c = read_csv(csv.string());
+    ASSERT_GE(c.rows.size(), 1u);
+    const double sag = 5.0 * kRho * kArea * kG * std::pow(kL, 4) / (384.0 * kE * inertia);
+    EXPECT_NEAR(c.rows[0][static_cast<std::size_t>(c.column("deck@10"))], -sag, kSagTol * sag) << flags.str();
+  }
+}
+
+TEST(SimulateVehicle, AStructureTooSoftForItsLoadsIsNotCalledAMechanism) {
+  // E entered in GPa: the deck sags 7.6e7 m under its own weight, and the
+  // first Newton step carries the tyre's contact away. The wheel was held
+  // at the start; the message says what happened instead of "mechanism".
+  TempDir dir;
+  const CliRun r = run_cli("simulate models/bridge_moving_mass.yaml --adjust off --set "
+                           "beams.deck.material.youngs_modulus=210 --quiet --out " +
+                           quote((dir / "soft.csv").string()));
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_EQ(r.err.find("mechanism"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Newton lost hold of 'wheel' after 1 iteration"), std::string::npos) << r.err;
+}
+
+TEST(SimulateVehicle, AZeroMassWheelIsNotCalledAMechanism) {
+  // The tyre holds the wheel; with mass 0 its acceleration is undefined.
+  TempDir dir;
+  const CliRun r = run_cli("simulate models/bridge_moving_mass.yaml --set bodies.wheel.mass=0 --quiet --out " +
+                           quote((dir / "m0.csv").string()));
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_EQ(r.err.find("mechanism"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bridge_moving_mass.yaml:39:19: static start of model 'bridge_moving_mass': 'wheel' moves no "
+                       "mass: body 'wheel' and every body it carries have mass 0 and inertia 0"),
+            std::string::npos)
+      << r.err;
+  // Started as written, the run diverges at once: the warning before it says
+  // why, and a run cut short says nothing of contacts that never touched.
+  const CliRun given = run_cli("simulate models/bridge_moving_mass.yaml --set bodies.wheel.mass=0 --start given "
+                               "--quiet --out " +
+                               quote((dir / "m0.csv").string()));
+  EXPECT_EQ(given.status, 3) << given.all();
+  EXPECT_NE(given.err.find("bridge_moving_mass.yaml:20:5: warning: body 'wheel': its joint moves no mass"),
+            std::string::npos)
+      << given.err;
+  EXPECT_EQ(given.err.find("never touched"), std::string::npos) << given.err;
+}
+
+TEST(SimulateVehicle, AVehicleThatNeverTouchesItsBeamIsWarnedAbout) {
+  // `angle: 180` meant as degrees: the deck points down and to the left, the
+  // wheel never rides on it and falls; the run completes (exit 0) but says so.
+  TempDir dir;
+  const fs::path csv = dir / "fall.csv";
+  const std::string run = "simulate models/bridge_moving_mass.yaml --set beams.deck.angle=180 --t-end 0.2 --quiet --out " +
+                          quote(csv.string());
+  const CliRun given = run_cli(run + " --start given");
+  EXPECT_EQ(given.status, 0) << given.all();
+  EXPECT_NE(given.err.find("warning: beam 'deck': angle = 180 rad is more than a turn: degrees entered as rad?"),
+            std::string::npos)
+      << given.err;
+  EXPECT_NE(given.err.find("mbfe: warning: contact 'tyre' never touched the beam during the run"), std::string::npos)
+      << given.err;
+  const std::string meta = slurp(csv.string() + ".json");
+  EXPECT_NE(meta.find("\"touched\": false"), std::string::npos) << meta;
+  EXPECT_NE(meta.find("contact 'tyre' never touched the beam during the run"), std::string::npos) << meta;
+  // The static start names the contact that holds nothing.
+  const CliRun fixed = run_cli(run);
+  EXPECT_EQ(fixed.status, 2) << fixed.all();
+  EXPECT_NE(fixed.err.find("nothing holds 'wheel' in place; its contact 'tyre' does not press on beam 'deck' at the "
+                           "start (gap 0 m; the beam points (-0.59846, -0.801153))"),
+            std::string::npos)
+      << fixed.err;
+  // The shipped crossing touches, and says nothing of it.
+  const CliRun crossing = run_cli("simulate models/bridge_moving_mass.yaml --quiet --out " + quote(csv.string()));
+  EXPECT_EQ(crossing.status, 0) << crossing.all();
+  EXPECT_EQ(crossing.err.find("warning"), std::string::npos) << crossing.err;
+  EXPECT_NE(slurp(csv.string() + ".json").find("\"touched\": true"), std::string::npos);
+}
+
 TEST(SimulateVehicle, AnInconsistentInitialStateIsAnnouncedOrRefused) {
   // The double pendulum on the beam, its tip lifted off the beam by turning link1.
   TempDir dir;

@@ -97,6 +97,43 @@ TEST(Sweep, SpatialLoopModelPointsRunAndCollect) {
   EXPECT_NE(summary.rows[0][spin], summary.rows[2][spin]);
 }
 
+TEST(Sweep, RunCsvKeepsTheBeamStateOnlyWhenAskedFor) {
+  // No probes: a point's rows hold every beam coordinate, which run.csv
+  // leaves out by default; the statistics still see them, and equal those
+  // of `mbfe simulate` of the point's model (which writes every coordinate).
+  TempDir dir;
+  const auto run_sweep = [&](const std::string& name, const std::string& extra) {
+    const fs::path sweep = dir / (name + ".yaml");
+    spit(sweep, "sweep: " + name + "\nmodel: " + source("models/bridge_moving_mass.yaml") +
+                    "\nvary:\n  - {path: bodies.wheel.mass, values: [1000.0, 500.0]}\n"
+                    "simulate: {t_end: 0.05" + extra + "}\n"
+                    "collect:\n  - {name: node20, column: deck_w20, stat: min}\n"
+                    "  - {name: node20_rate, column: deck_w20_dot, stat: max}\n");
+    const std::string out = (dir / name).string();
+    const CliRun r = run_cli("sweep " + shell_quote(sweep.string()) + " --out " + shell_quote(out) + " --jobs 2");
+    EXPECT_EQ(r.status, 0) << r.all();
+    return out;
+  };
+  const std::string lean = run_sweep("lean", ""), full = run_sweep("full", ", full_state: true");
+  const Csv run = read_csv(lean + "/points/1/run.csv");
+  EXPECT_EQ(run.header, (std::vector<std::string>{"t", "carriage", "wheel", "carriage_dot", "wheel_dot", "phi_abs",
+                                                  "force_tyre", "deflection_tyre", "carriage_drive"}));
+  const Csv kept = read_csv(full + "/points/1/run.csv");
+  ASSERT_GE(kept.column("deck_w20"), 0);
+  ASSERT_GE(kept.column("deck_dw3_dot"), 0);
+  const std::string csv = (dir / "by_hand.csv").string();
+  const CliRun hand =
+      run_cli("simulate " + shell_quote(lean + "/points/1/model.yaml") + " --t-end 0.05 --quiet --out " + shell_quote(csv));
+  ASSERT_EQ(hand.status, 0) << hand.all();
+  const Csv by_hand = read_csv(csv);
+  double lo = INFINITY;
+  for (const auto& row : by_hand.rows) lo = std::min(lo, row[by_hand.column("deck_w20")]);
+  for (const std::string& out : {lean, full}) {
+    const Csv summary = read_csv(out + "/summary.csv");
+    EXPECT_EQ(summary.rows[1][column(summary, "node20")], lo) << out;
+  }
+}
+
 TEST(Sweep, AFailingPointIsRecordedAndTheOthersGoOn) {
   TempDir dir;
   const fs::path sweep = dir / "masses.yaml";

@@ -116,6 +116,37 @@ TEST(RigidSystem, MasslessBodyGivesNamedError) {
   g_I = I_save;
 }
 
+const char* const kWheelNames[] = {"front_wheel", "rear_wheel"};
+
+TEST(RigidSystem, ASingularMassMatrixTellsNoMassFromIllConditioning) {
+  mbfe_model_v1 model{};
+  model.abi_version = MBFE_MODEL_ABI_VERSION;
+  model.model_name = "wheels";
+  model.num_coordinates = 2;
+  model.coordinate_names = kWheelNames;
+  const std::vector<BodyInertia> bodies = {{"front_wheel", 1500.0, 0.0}, {"rear_wheel", 1500.0, 0.0}};
+  const auto message = [&](const Eigen::Matrix2d& M) {
+    try {
+      throw_singular_mass_matrix(model, bodies, M, 0.4);
+    } catch (const SingularMassMatrixError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // Two 1.5 t wheels coupled by a grown state: eigenvalues 3000 and 7.5e-10,
+  // singular to 1e-10 of the largest, yet each coordinate moves mass.
+  Eigen::Matrix2d grown;
+  grown << 1500.0, 1500.0, 1500.0, 1500.0 * (1.0 + 1e-12);
+  const std::string ill = message(grown);
+  EXPECT_EQ(ill.find("move no mass"), std::string::npos) << ill;
+  EXPECT_EQ(ill.find("Give the bodies"), std::string::npos) << ill;
+  EXPECT_NE(ill.find("numerically only: front_wheel, rear_wheel move mass"), std::string::npos) << ill;
+  EXPECT_NE(ill.find("`mbfe advise` or `mbfe stability`"), std::string::npos) << ill;
+  // A zero diagonal entry: that coordinate, and only it, moves no mass.
+  const std::string none = message(Eigen::Vector2d(1500.0, 0.0).asDiagonal().toDenseMatrix());
+  EXPECT_NE(none.find("these coordinates move no mass: rear_wheel."), std::string::npos) << none;
+}
+
 TEST(RigidSystem, WrongSizesAreRejected) {
   const mbfe_model_v1 model = pendulum_model();
   EXPECT_THROW((RigidSystem(model, {{"a", 1, 1}, {"b", 1, 1}})), std::invalid_argument);
