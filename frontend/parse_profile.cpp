@@ -119,7 +119,7 @@ void ModelParser::parse_profile(const MapView& beam_view, Beam& beam) const {
   if (psd == nullptr)
     for (const char* key : {"class", "wavelengths", "seed"})
       if (const Field* extra = view.find(key))
-        view.fail(extra->key_loc, view.prefixed(std::string(key) + " belongs to a psd profile; this one has " +
+        view.fail(extra->key_loc, view.prefixed(view.what(*extra) + " belongs to a psd profile; this one has " +
                                                 (expression ? "an expression" : "a file")));
   if (expression != nullptr) {
     profile.kind = ProfileKind::kExpression;
@@ -142,13 +142,13 @@ void ModelParser::parse_profile(const MapView& beam_view, Beam& beam) const {
     const std::string opened = path.lexically_normal().string();
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
-      view.fail(file->value_loc, view.prefixed("file: cannot read \"" + shown(profile.table_file) + "\" (looked for " +
+      view.fail(file->value_loc, view.prefixed(view.what(*file) + ": cannot read \"" + shown(profile.table_file) + "\" (looked for " +
                                                shown(opened) + ", relative to the model file); expected a CSV "
                                                "file with columns s and offset"));
     read_profile_table(opened, opened, profile.table_s, profile.table_offset);
     if (profile.table_s.front() > 0.0 || profile.table_s.back() < beam.length)
       view.fail(file->value_loc,
-                view.prefixed("file: \"" + shown(profile.table_file) + "\" covers s in [" +
+                view.prefixed(view.what(*file) + ": \"" + shown(profile.table_file) + "\" covers s in [" +
                               format_number(profile.table_s.front()) + ", " + format_number(profile.table_s.back()) +
                               "] m; expected it to cover the beam's [0, " + format_number(beam.length) + "] m"));
     return;
@@ -160,7 +160,7 @@ void ModelParser::parse_profile(const MapView& beam_view, Beam& beam) const {
     const long long k = view.whole_number(track_class);
     if (k < 1 || k > 6)
       view.fail(track_class.value_loc,
-                view.prefixed("class: the FRA spectrum has track classes 1 to 6, got " + shown(track_class.value.Scalar())));
+                view.prefixed(view.what(track_class) + ": the FRA spectrum has track classes 1 to 6, got " + shown(track_class.value.Scalar())));
     profile.spectrum_class = static_cast<int>(k);
   } else {
     profile.spectrum_class = view.choice(track_class, {"low", "high"});
@@ -168,7 +168,7 @@ void ModelParser::parse_profile(const MapView& beam_view, Beam& beam) const {
   const Field& wavelengths = view.require("wavelengths");
   const std::vector<double> band = view.numbers(wavelengths, 2, "[shortest, longest] (m)");
   if (!(band[0] > 0.0 && band[1] > band[0]))
-    view.fail(wavelengths.value_loc, view.prefixed("wavelengths: expected [shortest, longest] with 0 < shortest < "
+    view.fail(wavelengths.value_loc, view.prefixed(view.what(wavelengths) + ": expected [shortest, longest] with 0 < shortest < "
                                                    "longest (m), got [" + format_number(band[0]) + ", " +
                                                    format_number(band[1]) + "]"));
   profile.wavelength_min = band[0];
@@ -176,13 +176,13 @@ void ModelParser::parse_profile(const MapView& beam_view, Beam& beam) const {
   const double terms = std::max(200.0, 4.0 * beam.length / band[0]) * (32.0 * beam.length / band[0]);
   if (terms > kMaxHarmonicTerms)
     view.fail(wavelengths.value_loc,
-              view.prefixed("wavelengths: a " + format_number(beam.length) + " m beam with wavelengths down to " +
+              view.prefixed(view.what(wavelengths) + ": a " + format_number(beam.length) + " m beam with wavelengths down to " +
                             format_number(band[0]) + " m needs " + format_number(terms) +
                             " harmonic evaluations (at most " + format_number(kMaxHarmonicTerms) +
                             "); expected a longer shortest wavelength or a shorter beam"));
   if (const Field* seed = view.find("seed")) {
     const long long value = view.whole_number(*seed);
-    if (value < 0) view.fail(seed->value_loc, view.prefixed("seed: expected a whole number >= 0, got " + shown(seed->value.Scalar())));
+    if (value < 0) view.fail(seed->value_loc, view.prefixed(view.what(*seed) + ": expected a whole number >= 0, got " + shown(seed->value.Scalar())));
     profile.seed = static_cast<std::uint64_t>(value);
   }
 }
