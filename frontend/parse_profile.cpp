@@ -1,6 +1,7 @@
 // ModelParser: a beam's running surface, `profile:` and `camber:`
 // (docs/profiles.md): an expression in s, a table read from a CSV file next to
 // the model, or a random profile from a track spectrum.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
