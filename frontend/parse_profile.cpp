@@ -45,7 +45,8 @@ std::vector<std::pair<std::string, int>> cells_of(const std::string& line) {
 }
 
 /// Reads the table `shown_path` (opened at `path`): a header naming columns
-/// `s` and `offset` (others are ignored), then one row of numbers per line,
+/// `s` and `offset` (others are ignored), or none (then the first two columns
+/// are s and offset), then one row of numbers per line,
 /// s strictly increasing. Blank lines and lines starting with '#' are skipped.
 /// @throws ir::ModelError at the table's line and column.
 void read_profile_table(const std::string& path, const std::string& shown_path, std::vector<double>& s,
@@ -62,15 +63,26 @@ void read_profile_table(const std::string& path, const std::string& shown_path, 
     const std::string text = trimmed(line);
     if (text.empty() || text[0] == '#') continue;
     const auto cells = cells_of(line);
-    if (s_col < 0) {  // the header
+    if (s_col < 0) {  // the header, or a first row of numbers: then s and offset are columns 1 and 2
       for (std::size_t c = 0; c < cells.size(); ++c) {
         if (cells[c].first == "s") s_col = static_cast<int>(c);
         if (cells[c].first == "offset") offset_col = static_cast<int>(c);
       }
-      if (s_col < 0 || offset_col < 0)
-        fail(1, "expected a header naming the columns s and offset (m), got \"" + shown(text) + "\"");
       width = cells.size();
-      continue;
+      if (s_col >= 0 && offset_col >= 0) continue;
+      if (cells.size() >= 2 && std::all_of(cells.begin(), cells.end(), [](const auto& cell) {
+            double v = 0.0;
+            const char* first = cell.first.data() + (!cell.first.empty() && cell.first[0] == '+');
+            const char* last = cell.first.data() + cell.first.size();
+            const auto [end, error] = std::from_chars(first, last, v);
+            return !cell.first.empty() && error == std::errc() && end == last;
+          })) {
+        s_col = 0;
+        offset_col = 1;
+      } else {
+        fail(1, "expected a header naming the columns s and offset (m), or rows of two numbers, got \"" +
+                    shown(text) + "\"");
+      }
     }
     if (cells.size() != width)
       fail(1, "expected " + std::to_string(width) + " cells as in the header, got " + std::to_string(cells.size()));

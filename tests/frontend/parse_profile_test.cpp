@@ -80,6 +80,13 @@ TEST_F(ParseProfile, TableRelativeToTheModelFile) {
   EXPECT_EQ(p.table_offset, (std::vector<double>{0.0, 0.001, -0.002}));
 }
 
+TEST_F(ParseProfile, TableWithoutHeaderHasSThenOffset) {
+  write("bare.csv", "0,0.001\n15,-0.001\n30,0\n");
+  const Model m = parse("profile: {file: bare.csv}");
+  EXPECT_EQ(m.beams[0].profile.table_s, (std::vector<double>{0.0, 15.0, 30.0}));
+  EXPECT_EQ(m.beams[0].profile.table_offset, (std::vector<double>{0.001, -0.001, 0.0}));
+}
+
 TEST_F(ParseProfile, BadTablesAreRefusedWhereTheyAreWrong) {
   const std::string table = (dir_ / "bad.csv").lexically_normal().string();
   write("bad.csv", "s,offset\n0,0\n5,0.001\n5,0.002\n30,0\n");
