@@ -18,8 +18,8 @@ using ir::Expression;
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string allowed_names() {
-  std::string names = "t, pi";
+std::string allowed_names(const std::string& variable) {
+  std::string names = variable + ", pi";
   for (const auto& f : ir::kExpressionFunctions) names += std::string(", ") + f.name;
   return names;
 }
@@ -27,17 +27,17 @@ std::string allowed_names() {
 class ExpressionParser {
  public:
   ExpressionParser(const std::string& text, const std::string& file, ir::SourceLoc loc,
-                   const std::string& what)
-      : text_(text), file_(file), loc_(loc), what_(what) {}
+                   const std::string& what, const std::string& variable)
+      : text_(text), file_(file), loc_(loc), what_(what), variable_(variable) {}
 
   Expression parse() {
     skip_space();
-    if (pos_ == text_.size()) fail(pos_, "is empty; expected an expression in t");
+    if (pos_ == text_.size()) fail(pos_, "is empty; expected an expression in " + variable_);
     sum(0);
     skip_space();
     if (pos_ != text_.size()) fail(pos_, "unexpected '" + shown(std::string(1, text_[pos_])) + "'");
-    Expression e(std::move(nodes_), ir::ExpressionSource{file_, what_, shown(text_), loc_});
-    // A part that does not depend on t is a number: one that is not finite
+    Expression e(std::move(nodes_), ir::ExpressionSource{file_, what_, shown(text_), loc_, variable_});
+    // A part that does not depend on the variable is a number: one that is not finite
     // (1/0, log(0), exp(1000)) or undefined (0^0) is an error here, where it
     // is written, not a GiNaC exception in the generator or a NaN in a run.
     if (const auto fault = e.constant_fault()) {
@@ -146,7 +146,7 @@ class ExpressionParser {
   int primary(int depth) {
     enter(depth);
     skip_space();
-    if (pos_ == text_.size()) fail(pos_, "ends where a number, t, a function or '(' was expected");
+    if (pos_ == text_.size()) fail(pos_, "ends where a number, " + variable_ + ", a function or '(' was expected");
     const std::size_t at = pos_;
     const char c = text_[pos_];
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') return number();
@@ -155,7 +155,7 @@ class ExpressionParser {
              (std::isalnum(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '_'))
         ++pos_;
       const std::string name = text_.substr(at, pos_ - at);
-      if (name == "t") return push(Expression::Kind::kTime, at, 0);
+      if (name == variable_) return push(Expression::Kind::kTime, at, 0);
       if (name == "pi") return push(Expression::Kind::kNumber, at, 0, kPi);
       for (std::size_t f = 0; f < std::size(ir::kExpressionFunctions); ++f) {
         const ir::ExpressionFunction& function = ir::kExpressionFunctions[f];
@@ -173,7 +173,7 @@ class ExpressionParser {
                        (function.arity == 1 ? "" : "s") + ", got " + std::to_string(count));
         return push(Expression::Kind::kCall, at, deepest, 0.0, static_cast<ir::Function>(f));
       }
-      fail(at, "unknown name '" + shown(name) + "' (allowed: " + allowed_names() + ")");
+      fail(at, "unknown name '" + shown(name) + "' (allowed: " + allowed_names(variable_) + ")");
     }
     if (accept('(')) {
       const int tree = sum(depth + 1);
@@ -207,6 +207,7 @@ class ExpressionParser {
   const std::string& file_;
   ir::SourceLoc loc_;
   const std::string& what_;
+  const std::string& variable_;
   std::size_t pos_ = 0;
   std::vector<ir::ExpressionNode> nodes_;  // postfix, as built
 };
@@ -214,8 +215,8 @@ class ExpressionParser {
 }  // namespace
 
 ir::Expression parse_expression(const std::string& text, const std::string& file, ir::SourceLoc loc,
-                                const std::string& what) {
-  return ExpressionParser(text, file, loc, what).parse();
+                                const std::string& what, const std::string& variable) {
+  return ExpressionParser(text, file, loc, what, variable).parse();
 }
 
 }  // namespace mbfe::frontend

@@ -32,11 +32,13 @@ constexpr int kMaxExpressionTreeDepth = 1000;
 constexpr int kMaxExpressionNodes = 10000;
 
 /// Parses `text`, whose first character sits at `loc` in `file`; `what` names
-/// the value in messages ("load #1: value"). Parts that do not depend on t
+/// the value in messages ("load #1: value"); `variable` is the name the text
+/// uses for its variable: "t" (time) or "s" (position along a beam, for a
+/// profile), held as Kind::kTime in the tree. Parts that do not depend on it
 /// are evaluated: one that is not finite or undefined (1/0, 0/0, log(0),
 /// sqrt(-1), 0^0, exp(1000)) is an error at its operator.
 /// @throws ir::ModelError.
 ir::Expression parse_expression(const std::string& text, const std::string& file, ir::SourceLoc loc,
-                                const std::string& what);
+                                const std::string& what, const std::string& variable = "t");
 
 }  // namespace mbfe::frontend

@@ -131,6 +131,10 @@ class ModelParser {
 
   Adjustment parse_adjustment(const MapView& view);
 
+  /// `profile:` and `camber:` of a beam into beam.profile (parse_profile.cpp);
+  /// a profile table is read here, relative to the model file.
+  void parse_profile(const MapView& beam_view, Beam& beam) const;
+
   // ---- contacts ----------------------------------------------------------
 
   void parse_contacts(const MapView& top, const Field& field);

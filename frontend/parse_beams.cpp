@@ -20,7 +20,7 @@ void ModelParser::parse_beams(const MapView& top, const Field& field) {
 
 Beam ModelParser::parse_beam(const MapView& view) {
   view.allow({"name", "origin", "angle", "length", "elements", "section", "material", "supports",
-              "damping", "loads", "adjustment", "mass", "tension", "masses"});
+              "damping", "loads", "adjustment", "mass", "tension", "masses", "profile", "camber"});
   Beam beam;
   beam.loc = view.loc();
   const Field& name = view.require("name");
@@ -47,6 +47,7 @@ Beam ModelParser::parse_beam(const MapView& view) {
     beam.mass = view.choice(*mass, {"consistent", "lumped"}) == 0 ? MassLumping::kConsistent
                                                                   : MassLumping::kLumped;
   }
+  parse_profile(view, beam);
   return beam;
 }
 

@@ -273,10 +273,10 @@ bool MapView::boolean(const Field& field) const {
   fail(field.value_loc, prefixed(what(field) + ": expected true or false, got " + describe(value)));
 }
 
-ir::Expression MapView::expression(const Field& field) const {
+ir::Expression MapView::expression(const Field& field, const std::string& variable) const {
   const YAML::Node& value = field.value;
   if (!value.IsScalar()) {
-    fail(field.value_loc, prefixed(what(field) + ": expected a number or an expression in t, got " +
+    fail(field.value_loc, prefixed(what(field) + ": expected a number or an expression in " + variable + ", got " +
                                    describe(value)));
   }
   double number = 0.0;
@@ -287,7 +287,7 @@ ir::Expression MapView::expression(const Field& field) const {
   ir::SourceLoc start = field.value_loc;
   if (is_quoted(value) && start.line > 0) ++start.column;  // past the opening quote
   const std::string prefix = context_.empty() ? what(field) : context_ + ": " + what(field);
-  return parse_expression(value.Scalar(), file_, start, prefix);
+  return parse_expression(value.Scalar(), file_, start, prefix, variable);
 }
 
 std::vector<ir::Expression> MapView::expressions(const Field& field, std::size_t count,

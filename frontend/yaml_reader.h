@@ -78,7 +78,8 @@ class MapView {
   bool boolean(const Field& field) const;
   /// A number, or a string holding an expression in t
   /// (frontend/expression_parser.h), located in messages.
-  ir::Expression expression(const Field& field) const;
+  /// `variable`: "t", or "s" for a profile along a beam (frontend/expression_parser.h).
+  ir::Expression expression(const Field& field, const std::string& variable = "t") const;
   /// [x, y], each a number or an expression in t.
   std::array<ir::Expression, 2> expression_pair(const Field& field) const;
   /// [x, y, z], each a number or an expression in t.

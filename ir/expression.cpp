@@ -208,8 +208,9 @@ std::string describe_fault(const Expression& e, const ExpressionFault& fault, do
   std::snprintf(time, sizeof time, "%.6g", t);
   const ExpressionSource& s = e.source();
   const std::string value = s.text.empty() ? std::string("the value") : "\"" + s.text + "\"";
-  return (s.what.empty() ? "" : s.what + " ") + value + " is " + shown(fault.value) + " at t = " + time +
-         " s: " + fault.reason;
+  const char* unit = s.variable == "t" ? " s: " : " m: ";
+  return (s.what.empty() ? "" : s.what + " ") + value + " is " + shown(fault.value) + " at " + s.variable + " = " +
+         time + unit + fault.reason;
 }
 
 std::string node_location(const Expression& e, int node) {

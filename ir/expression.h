@@ -61,6 +61,10 @@ struct ExpressionSource {
   std::string what;  // which value: "load #1: value", "body 'slider': joint.motion"
   std::string text;  // as written
   SourceLoc loc;     // of the text's first character
+  /// The variable the text is written in: "t" (time, s) or, for a running
+  /// surface's profile, "s" (the position along the beam, m). Messages only:
+  /// the tree holds it as Kind::kTime either way.
+  std::string variable = "t";
 };
 
 /// Where a value stops being finite: the first node (in postfix order) whose

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -193,6 +194,31 @@ struct Adjustment {
 
 enum class MassLumping { kConsistent, kLumped };
 
+/// The running surface of a beam (`profile:` and `camber:`, docs/profiles.md):
+/// what slider contacts ride on is w(s) + r(s) - w_dead(s), r the profile's
+/// offset from the beam axis along +w and w_dead the beam's static deflection
+/// under its own weight when `camber: static`.
+enum class ProfileKind { kNone, kExpression, kTable, kSpectrum };
+
+/// A published track-irregularity spectrum (runtime/fem/track_spectrum.h).
+enum class TrackSpectrum { kFra, kGerman };
+
+struct BeamProfile {
+  ProfileKind kind = ProfileKind::kNone;
+  Expression expression;            // kExpression: r(s) in m, s in m
+  std::vector<double> table_s;      // kTable: m, strictly increasing, covers [0, L]
+  std::vector<double> table_offset; // kTable: m, one per table_s (linear between)
+  std::string table_file;           // kTable: as written, for messages
+  TrackSpectrum spectrum = TrackSpectrum::kFra;  // kSpectrum
+  int spectrum_class = 0;           // FRA: 1..6; German: 0 low, 1 high disturbance
+  double wavelength_min = 0.0;      // m, > 0 (kSpectrum)
+  double wavelength_max = 0.0;      // m, > wavelength_min (kSpectrum)
+  std::uint64_t seed = 0;           // kSpectrum
+  bool camber_static = false;       // `camber: static`
+  SourceLoc loc;
+  bool active() const { return kind != ProfileKind::kNone || camber_static; }
+};
+
 /// A planar Euler-Bernoulli beam fixed to the ground.
 struct Beam {
   std::string name;
@@ -214,6 +240,7 @@ struct Beam {
   Adjustment adjustment;
   MassLumping mass = MassLumping::kConsistent;
   SourceLoc loc;
+  BeamProfile profile;  // the running surface slider contacts ride on
 };
 
 enum class ContactType { kPin, kSliderPin, kSliderSpring };

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "runtime/errors/multibody_errors.h"
+#include "runtime/fem/running_surface.h"
 
 namespace mbfe::runtime {
 
@@ -129,6 +130,8 @@ void ContactConstraints::evaluate(double t, const double* qb, const double* qc,
       qe[j] = f >= 0 ? qc[cols[j]] : 0.0;
       qed[j] = (f >= 0 && want_gamma) ? qcd[cols[j]] : 0.0;
     }
+    // A slider rides on the running surface, w + profile - camber; a pin holds the axis.
+    if (k.type == 1 && beam.surface) beam.surface->add_to_element(idx, s, s0, beam.element_length, qe);
     const int r0 = row0_[c];
     k.phi(qb, qe, s0, beam.element_length, out.phi.data() + r0);
     double* jb = jb_buf;
@@ -165,6 +168,8 @@ void ContactConstraints::evaluate_gamma(const double* qb, const double* qc, cons
       qe[j] = col >= 0 ? qc[col] : 0.0;
       qed[j] = col >= 0 ? qcd[col] : 0.0;
     }
+    if (k.type == 1 && beam.surface)
+      beam.surface->add_to_element(idx, out.s[c], idx * beam.element_length, beam.element_length, qe);
     k.gamma(qb, qbd, qe, qed, idx * beam.element_length, beam.element_length,
             out.gamma.data() + row0_[c]);
   }

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "runtime/fem/hermite_shape.h"
+#include "runtime/fem/running_surface.h"
 
 namespace mbfe::runtime {
 
@@ -72,12 +73,14 @@ void SliderSpringForce::add_force(const ForceArgs& x, ForceState& state, ForceSi
     qe[j] = f >= 0 ? x.qc[g.cols[j]] : 0.0;
     qed[j] = f >= 0 ? x.vc[g.cols[j]] : 0.0;
   }
+  st.w = hermite::N((st.s - s0) / mesh_.element_length, mesh_.element_length) *
+         Eigen::Map<const Eigen::Vector4d>(qe);
+  // The point rides on the running surface, w + profile - camber.
+  if (mesh_.surface) mesh_.surface->add_to_element(element, st.s, s0, mesh_.element_length, qe);
   kernels_.phi(x.qb, qe, s0, mesh_.element_length, &st.delta);
   // Pressed from the +w side: the penetration and its gradient change sign.
   const double side = kernels_.from_below ? -1.0 : 1.0;
   st.delta *= side;
-  st.w = hermite::N((st.s - s0) / mesh_.element_length, mesh_.element_length) *
-         Eigen::Map<const Eigen::Vector4d>(qe);
   std::vector<double>& jb = g.jb;
   kernels_.jacobians(x.qb, qe, s0, mesh_.element_length, jb.data(), g.je);
   if (side < 0.0) {

@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "ir/beam_nodes.h"
 #include "runtime/fem/beam_element.h"
 #include "runtime/fem/hermite_shape.h"
+#include "runtime/fem/running_surface.h"
 
 namespace mbfe::runtime {
 
@@ -192,6 +194,8 @@ BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity) {
     load.free_index = sys.full_to_free[load.free_index];
     if (load.free_index >= 0) sys.timed_loads.push_back(std::move(load));  // else: the support carries it
   }
+  if (std::optional<RunningSurface> surface = running_surface(beam, gravity))
+    sys.surface = std::make_shared<const RunningSurface>(std::move(*surface));
   return sys;
 }
 

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,8 @@ struct TimedNodalLoad {
   ir::Expression value;  // N
   ir::TimeWindow window;
 };
+
+class RunningSurface;
 
 struct BeamSystem {
   std::string name;
@@ -44,6 +47,9 @@ struct BeamSystem {
   /// S with S^T S = K (r x n, r = 2 per element for the Hermite element), or
   /// empty when the element offers no factor. Used by the sparse modal path.
   Eigen::SparseMatrix<double> stiffness_factor;
+  /// What slider contacts ride on beyond w (`profile:`, `camber:`;
+  /// runtime/fem/running_surface.h); null for the bare axis.
+  std::shared_ptr<const RunningSurface> surface;
 };
 
 /// Assembles one beam. @param gravity ground-frame gravity (m/s^2); its

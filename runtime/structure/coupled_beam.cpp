@@ -9,6 +9,7 @@ BeamMesh beam_mesh(const BeamSystem& beam) {
   mesh.element_length = beam.element_length;
   mesh.full_to_free = beam.full_to_free;
   mesh.num_free = static_cast<int>(beam.M.rows());
+  mesh.surface = beam.surface;
   return mesh;
 }
 
