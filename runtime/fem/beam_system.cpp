@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "ir/beam_nodes.h"
+#include "runtime/errors/invalid_input.h"
 #include "runtime/fem/beam_element.h"
 #include "runtime/fem/hermite_shape.h"
 #include "runtime/fem/running_surface.h"
@@ -78,6 +79,9 @@ BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity) {
     }
   }
   const int n = static_cast<int>(sys.free_dof.size());
+  if (n == 0)
+    throw InvalidInput("beam '" + beam.name + "': its supports hold every node (" + std::to_string(n_full) +
+                       " degrees of freedom, none free), so it cannot move; give it more elements or fewer supports");
 
   // Full-length load vector first; restricted to the free DOFs below.
   Eigen::VectorXd p_full = Eigen::VectorXd::Zero(n_full);

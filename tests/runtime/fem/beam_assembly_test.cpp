@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "tests/runtime/fem/beam_fixtures.h"
+#include "runtime/errors/invalid_input.h"
 #include "runtime/fem/beam_system.h"
 
 namespace mbfe::runtime {
@@ -135,6 +136,20 @@ TEST(BeamAssembly, LumpedMassKeepsTheTotalMass) {
     for (Eigen::Index i = 0; i < translation.size(); i += 2) translation[i] = 1.0;
     EXPECT_NEAR(translation.dot(s.M * translation), mass_per_length(b) * b.length,
                 kRoundoffTol * mass_per_length(b));
+  }
+}
+
+TEST(BeamAssembly, ABeamItsSupportsHoldEverywhereIsRefusedByName) {
+  // One element clamped at both ends: all four degrees of freedom fixed. The
+  // coupled runtime once read past its empty matrices (a segmentation fault).
+  ir::Beam b = test::paper_beam(0.005, 1);
+  b.supports = {{0.0, ir::SupportType::kClamped, -1, {}}, {1.0, ir::SupportType::kClamped, -1, {}}};
+  try {
+    assemble_beam(b, {0.0, 0.0});
+    FAIL() << "assembled a beam with no free degree of freedom";
+  } catch (const InvalidInput& e) {
+    EXPECT_STREQ(e.what(), "beam 'beam1': its supports hold every node (4 degrees of freedom, none free), so it "
+                           "cannot move; give it more elements or fewer supports");
   }
 }
 
