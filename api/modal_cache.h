@@ -1,6 +1,7 @@
-// The modes a cap keeps in a large beam, kept on disk in the solver cache's
-// folder (api/cache_folder.h) so that the slicing is paid once per beam:
-// reused by later runs, sweep points and speeds of the same beam.
+// The modes a cap keeps in a large beam, and every mode of a dense beam of
+// some hundreds of DOFs, kept on disk in the solver cache's folder
+// (api/cache_folder.h) so that the slicing or the dense solve is paid once per
+// beam: reused by later runs, sweep points and speeds of the same beam.
 //
 // Layout, in the cache folder:
 //   modes/                 mode 0700
@@ -9,8 +10,8 @@
 //                          column-major) in this machine's byte order;
 //     .tmp-*               a basis being written.
 // The key is the SHA-256 of the runtime's description of what the modes
-// depend on (runtime::sliced_modes_inputs: the beam's matrices bit for bit,
-// the options), the sources of runtime/modal/, the compiler, its flags and the
+// depend on (runtime::sliced_modes_inputs or dense_modes_inputs: the beam's
+// matrices bit for bit, the options), the sources of runtime/modal/, the compiler, its flags and the
 // Eigen version. A file is written under a temporary name, flushed and renamed
 // into place in one step, so a reader sees a whole file or none.
 //

@@ -48,7 +48,18 @@ BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamA
       part.kept_modes_unavailable = e.what();
     }
   }
-  if (part.basis.omega.size() == 0) part.basis = modal_analysis(part.system, mo);
+  if (part.basis.omega.size() == 0) {
+    const bool stored = part.dense && options.modes_store && n >= options.dense_store_from;
+    std::string inputs;
+    if (stored) {
+      inputs = dense_modes_inputs(part.system);
+      if (std::optional<ModalBasis> kept = options.modes_store->find(inputs, n)) part.basis = std::move(*kept);
+    }
+    if (part.basis.omega.size() == 0) {
+      part.basis = modal_analysis(part.system, mo);
+      if (stored) options.modes_store->keep(inputs, part.basis);
+    }
+  }
   part.original = rayleigh_modes(part.basis.omega, part.system.rayleigh_alpha, part.system.rayleigh_beta);
   part.has_adjustment = beam.adjustment.active();
   try {

@@ -44,4 +44,11 @@ std::string sliced_modes_inputs(const BeamSystem& beam, const ModalOptions& opti
   return out;
 }
 
+std::string dense_modes_inputs(const BeamSystem& beam) {
+  std::string out = "dense modes " + std::to_string(kDenseModesVersion) + "\n";
+  append_matrix(out, "M", beam.M);
+  append_matrix(out, "K", beam.K);
+  return out;
+}
+
 }  // namespace mbfe::runtime

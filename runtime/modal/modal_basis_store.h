@@ -1,7 +1,8 @@
 // Somewhere to keep modal bases between runs. Slicing out the modes a cap
-// keeps in a large beam takes seconds per beam (thousands of modes); they
-// depend only on the beam's matrices, the slicing's options and the code, so
-// a run, a sweep point or another speed can reuse them. The runtime knows no
+// keeps in a large beam takes seconds per beam (thousands of modes), the
+// dense solve of a beam of a thousand DOFs most of a second; they depend only
+// on the beam's matrices, the options and the code, so a run, a sweep point
+// or another speed can reuse them. The runtime knows no
 // files: it describes what the modes depend on (sliced_modes_inputs) and asks
 // a store; the API keeps them on disk (api/modal_cache.h).
 #pragma once
@@ -37,5 +38,12 @@ inline constexpr int kSlicedModesVersion = 1;
 /// stiffness factor bit for bit (sizes, sparsity and values). Equal inputs
 /// give equal bases. About 12 bytes per stored matrix entry.
 std::string sliced_modes_inputs(const BeamSystem& beam, const ModalOptions& options);
+
+/// Version of the dense path's results (modal_dense), as kSlicedModesVersion.
+inline constexpr int kDenseModesVersion = 1;
+
+/// What modal_dense(beam.M, beam.K) depends on, as bytes: kDenseModesVersion
+/// and M and K bit for bit. Never equal to any sliced_modes_inputs.
+std::string dense_modes_inputs(const BeamSystem& beam);
 
 }  // namespace mbfe::runtime

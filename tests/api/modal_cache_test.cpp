@@ -200,6 +200,41 @@ TEST_F(ModalCache, SecondLoadUsesTheCacheAndGivesTheSameBits) {
   EXPECT_LT(other.assembled().beams().beams[1].basis.omega.size(), first.assembled().beams().beams[1].basis.omega.size());
 }
 
+TEST_F(ModalCache, DenseBeamsKeepEveryModeAndGetTheSameBits) {
+  auto store = std::make_shared<CountingStore>(cache().string());
+  const auto load_dense = [&]() {
+    LoadOptions options;
+    options.beams.dense_store_from = kBelowTheWires;  // the wires are dense (default limit) and kept
+    options.beams.modes_store = store;
+    return Model::parse(test::with_wire_adjustment("{omega_limit: 800.0, margin: 0.1}"), "modal_cache.yaml",
+                        options);
+  };
+  const Model first = load_dense();
+  first.assembled();
+  EXPECT_EQ(store->misses, 2);
+  const Model second = load_dense();
+  second.assembled();
+  EXPECT_EQ(store->hits, 2);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const runtime::BeamPart& a = first.assembled().beams().beams[k];
+    const runtime::BeamPart& b = second.assembled().beams().beams[k];
+    EXPECT_TRUE(a.dense);
+    EXPECT_TRUE(b.basis.complete);
+    EXPECT_EQ(b.basis.phi.cols(), b.basis.phi.rows());
+    EXPECT_TRUE(same_bits(a.basis, b.basis)) << "beam " << k;
+  }
+  const Eigen::VectorXd a1 = accelerations(first), a2 = accelerations(second);
+  ASSERT_EQ(a1.size(), a2.size());
+  EXPECT_EQ(std::memcmp(a1.data(), a2.data(), sizeof(double) * a1.size()), 0);
+
+  // Beams below the threshold never ask the store.
+  const int asked = store->hits + store->misses;
+  LoadOptions small;
+  small.beams.modes_store = store;
+  Model::parse(test::with_wire_adjustment("{omega_limit: 800.0, margin: 0.1}"), "modal_cache.yaml", small).assembled();
+  EXPECT_EQ(store->hits + store->misses, asked);
+}
+
 // Accelerations of the original model at a seeded random state.
 Eigen::VectorXd original_accelerations(const runtime::AssembledModel& assembled) {
   auto dynamics = assembled.make_dynamics(false);
