@@ -90,7 +90,16 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
         if (static_start) coupled_static_start(model.ir(), dynamics, q0, qd0);
         if (from_tangents) {
           CoupledTangents tangents(*dynamics, 0.0, q0, qd0);
-          return from_linearization(tangent_spectrum(tangents), n_coupled);
+          ModelSpectrum out = from_linearization(tangent_spectrum(tangents), n_coupled);
+          std::vector<std::complex<double>> limiting = out.limiting.eigenvalues;
+          const std::vector<std::complex<double>> middle =
+              middle_of_spectrum(out.full, adjusted ? model.beams().adjusted : model.beams().original);
+          if (middle.empty()) return out;
+          limiting.insert(limiting.end(), middle.begin(), middle.end());
+          out.limiting = spectrum_from_eigenvalues(std::move(limiting));
+          out.limiting.complete = false;
+          out.middle_from_beams = static_cast<int>(middle.size());
+          return out;
         }
         const StateSpectrum full = linearized_spectrum(dynamics, 0.0, q0, qd0);
         return from_linearization(full, static_cast<int>(full.eigenvalues.size()) / 2);

@@ -47,6 +47,12 @@ struct ModelSpectrum {
   /// which has `growing_at_start` eigenvalues with Re > 0.
   bool at_equilibrium = false;
   int growing_at_start = 0;
+  /// Coupled, partial spectrum: eigenvalues of the beams' own modes (as the
+  /// model's adjustment leaves them) added to `limiting` between the two ends
+  /// Arnoldi computes. A lightly damped mode in that middle sets forward
+  /// Euler's and AB2's limits; uncoupled, its eigenvalue is an estimate of
+  /// the coupled one (the coupling moves it), far closer than none.
+  int middle_from_beams = 0;
 };
 
 /// A coupled model without constraint contacts is linearised from its own

@@ -168,4 +168,18 @@ StateSpectrum tangent_spectrum(CoupledTangents& tangents, const TangentSpectrumO
   return out;
 }
 
+std::vector<std::complex<double>> middle_of_spectrum(const StateSpectrum& partial, const StateSpectrum& source,
+                                                     int fastest) {
+  std::vector<std::complex<double>> middle;
+  const std::vector<std::complex<double>>& ev = partial.eigenvalues;  // ascending modulus
+  const std::size_t top = static_cast<std::size_t>(std::max(fastest, 0));
+  if (partial.complete || ev.size() <= top) return middle;
+  const double lo = std::abs(ev[ev.size() - top - 1]), hi = std::abs(ev[ev.size() - top]);
+  for (const std::complex<double>& l : source.eigenvalues) {
+    const double r = std::abs(l);
+    if (r > lo && r < hi && l.real() <= 0.0) middle.push_back(l);
+  }
+  return middle;
+}
+
 }  // namespace mbfe::runtime

@@ -24,6 +24,9 @@
 // (docs/damping-adjustment.md, "The stability advisor").
 #pragma once
 
+#include <complex>
+#include <vector>
+
 #include "runtime/coupled/coupled_tangents.h"
 #include "runtime/modal/state_spectrum.h"
 
@@ -56,5 +59,17 @@ struct TangentSpectrumOptions {
 /// @throws std::runtime_error when the Arnoldi iteration does not converge
 ///         (the message says at which end).
 StateSpectrum tangent_spectrum(CoupledTangents& tangents, const TangentSpectrumOptions& options = {});
+
+/// What fills the middle of a partial spectrum: the eigenvalues of `source`
+/// (the beams' own modes, as the model's adjustment leaves them) with Re <= 0
+/// and a modulus strictly between the two ends of `partial` (its last
+/// `fastest` entries by modulus are the fast end). A lightly damped mode there
+/// sets forward Euler's and AB2's limits; uncoupled, its eigenvalue estimates
+/// the coupled one (the contacts and links move it), where leaving it out
+/// overstated forward Euler's limit 8 times on the two-span catenary
+/// (docs/damping-adjustment.md, "The stability advisor"). Empty for a complete
+/// `partial`.
+std::vector<std::complex<double>> middle_of_spectrum(const StateSpectrum& partial, const StateSpectrum& source,
+                                                     int fastest = kFastestEigenvalues);
 
 }  // namespace mbfe::runtime

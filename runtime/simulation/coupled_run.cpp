@@ -231,14 +231,18 @@ class CoupledRun final : public ModelRun {
     try {
       const std::shared_ptr<CoupledDynamics> dynamics = model_.make_dynamics(adjusted_);
       StateSpectrum spectrum;
+      std::vector<std::complex<double>> middle;
       if (dynamics->model().m() == 0) {
         CoupledTangents tangents(*dynamics, 0.0, q0_, qd0_);
         spectrum = tangent_spectrum(tangents);
+        middle = middle_of_spectrum(spectrum, adjusted_ ? model_.beams().adjusted : model_.beams().original);
       } else {
         if (dynamics_->n() > kMaxDiagnosedCoordinates) return std::nullopt;
         spectrum = linearized_spectrum(dynamics, 0.0, q0_, qd0_);
       }
-      return stable_step(integrator, split_growing(with_zero_modes(spectrum)).limiting.eigenvalues);
+      std::vector<std::complex<double>> limiting = split_growing(with_zero_modes(spectrum)).limiting.eigenvalues;
+      limiting.insert(limiting.end(), middle.begin(), middle.end());
+      return stable_step(integrator, limiting);
     } catch (const std::exception&) {
       return std::nullopt;  // no limit known: the message says only what happened
     }
