@@ -28,9 +28,11 @@ namespace mbfe::runtime {
 namespace {
 
 // The two forms sum the same terms in another order (a base solve and a
-// few rows of Phi_L against passes over U and Phi_L) through a stiffness
-// matrix of condition about 1e8: 1e-9 of the largest acceleration is that
-// round-off with a margin, and fails for any wrong term.
+// few rows of Phi_L against passes over U and Phi_L): 1e-9 of the largest
+// acceleration, the bound tests/api/split_coordinates_test.cpp holds whole
+// runs to, and it fails for a wrong term (the kept modes' stiffness
+// change dropped).
+
 constexpr double kSummationOrderTol = 1e-9;
 // zeta - Phi_L^T M s after one step: a linear invariant, kept to round-off
 // of the sums that form zeta and s (relative to the largest |zeta|).
