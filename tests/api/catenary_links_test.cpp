@@ -77,7 +77,6 @@ TEST(Catenary, ImplicitAndExplicitAgreeThroughACrossingWithSlackDroppers) {
   constexpr double kEnd = 0.9;  // s: the head runs from 1 m to 19 m
   // s: both runs write rows at the same times, sums of their steps (round-off).
   constexpr double kRowTimeTol = 1e-9;
-
   Rows alpha, rk4;
   const runtime::SimulationReport ra = run(model, "generalized_alpha", 2e-4, kEnd, 5, alpha);
   const runtime::SimulationReport rr = run(model, "rk4", 2e-5, kEnd, 50, rk4);

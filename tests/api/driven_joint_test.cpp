@@ -30,7 +30,6 @@ constexpr double kMotionTol = 1e-14;
 // s: the row's time and this loop's, 2000 sums of the step in other orders.
 constexpr double kTimeTol = 1e-12;
 
-
 const std::string kModel = R"yaml(model: driven_cart_pendulum
 gravity: [0, -9.81]
 bodies:

@@ -60,7 +60,6 @@ constexpr double kEnd = 0.15;
 // s: runs of different steps write rows at the same times (sums of steps):
 // round-off of those sums.
 constexpr double kRowTimeTol = 1e-9;
-
 constexpr double kRowInterval = 1e-3;   // s: rows of every run compared at these times
 constexpr double kReferenceStep = 4e-6; // s: RK4, a third of its stable limit (1.24e-5 s)
 // Halving the step divides a second-order method's error by 4 and a first-order

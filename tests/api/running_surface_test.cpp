@@ -281,7 +281,6 @@ TEST(ProfiledContacts, PanHeadUnderAWireFollowsItsHeightIrregularity) {
     const double s = 1.0 + t[i];
     EXPECT_NEAR(y[i], 0.005 * std::sin(2 * kPi * s / 10) + 1e-4, kHeightTol) << "t = " << t[i];
     EXPECT_NEAR(force[i], 100.0, kPressTol) << "t = " << t[i];
-
   }
 }
 

@@ -228,7 +228,6 @@ TEST(ExpandTrain, VehicleBodyBalancesUnequalAxleLoads) {
   ASSERT_GE(body, 0);
   const double centre = a * (p2 - m * g) / (p1 + p2 - 2.0 * m * g);
   EXPECT_NEAR(model.bodies[body].mass, (p1 + p2) / g - 2.0 * m, kMassRoundOff);
-
   EXPECT_NEAR(rest_position(model, body)[0], 12.0 - centre, kPositionTol);
   EXPECT_NEAR(rest_position(model, body)[1], 1.5, kPositionTol);
   EXPECT_NEAR(rest_position(model, body_named(model, "train_v1_w2"))[0], 12.0 - a, kPositionTol);

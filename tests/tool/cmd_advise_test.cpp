@@ -59,7 +59,6 @@ TEST(Advise, TheLimitItPrintsIsTheLowestThatMeetsTheToleranceBySimulatesOwnEstim
   ASSERT_EQ(s.status, 0) << s.all();
   const double stable_rk4 = nlohmann::json::parse(s.out)["adjusted"]["rk4"].get<double>();
   EXPECT_NEAR(advised_rk4, stable_rk4, kPrintedStepRel * stable_rk4);
-
   EXPECT_NE(r.out.find("generalized_alpha   original model, at rk4's"), std::string::npos) << r.out;
 }
 

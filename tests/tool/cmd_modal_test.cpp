@@ -111,7 +111,6 @@ TEST(CmdModal, PolicyMassShowsTheCapsSpectrumAndTheModalMasses) {
   for (std::size_t j = 0; j < masses.size(); ++j) {
     if (j < 19) EXPECT_EQ(masses[j], 1.0) << j;
     else EXPECT_NEAR(masses[j], omega[j] * omega[j] / 1e10, kModalMassRoundOff * masses[j]) << j;
-
   }
   const CliRun text = run_cli("modal " + test::shell_quote(model));
   ASSERT_EQ(text.status, 0) << text.out;

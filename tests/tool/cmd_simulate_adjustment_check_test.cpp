@@ -41,7 +41,6 @@ double relative_difference(const Csv& a, const Csv& b, const std::string& column
     const std::size_t kb = k * static_cast<std::size_t>(ratio);
     if (kb >= b.rows.size()) break;
     EXPECT_NEAR(a.rows[k][0], b.rows[kb][0], kRowTimeTol);  // the same time
-
     diff = std::max(diff, std::abs(a.rows[k][ca] - b.rows[kb][cb]));
   }
   return diff / peak;

@@ -108,7 +108,6 @@ TEST(SimulateBeam, PolicyMassIsTheModalIntegrationWithRaisedModalMasses) {
     peak = std::max(peak, std::abs(w));
     worst = std::max(worst, std::abs(out.rows[s][1] - w));
     EXPECT_NEAR(out.rows[s][0], s * kStep, kRowTimeTol);
-
     for (int j = 0; j < n; ++j) rk4_step(modes[j], kStep, eta[j], v[j]);
   }
   EXPECT_GT(peak, 1e-3);  // the 10 N load bends the beam by millimetres

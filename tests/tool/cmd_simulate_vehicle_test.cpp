@@ -227,7 +227,6 @@ TEST(SimulateVehicle, CrossingColumnsAndTally) {
   ASSERT_EQ(c.rows.size(), 1201u);
   for (const auto& row : c.rows) {
     EXPECT_NEAR(row[1], 20.0 * row[0], kPrintedRoundOff);  // the carriage follows its motion
-
     EXPECT_EQ(row[4], 20.0);
     EXPECT_GE(row[8], 0.0);  // the tyre never pulls
   }

@@ -257,7 +257,6 @@ TEST(CmdStatsDeckAcceleration, PeakOfEveryAccelerationColumnAndTheEn1990Check) {
   EXPECT_NEAR(j["columns"][0]["peak"].get<double>(), 4.2, kPrintedRoundOff);
   EXPECT_NEAR(j["columns"][1]["peak"].get<double>(), 2.1, kPrintedRoundOff);
   EXPECT_NEAR(j["peak"].get<double>(), 4.2, kPrintedRoundOff);
-
   EXPECT_EQ(j["en1990"]["limit"], 3.5);
   EXPECT_EQ(j["en1990"]["ok"], false);
   // Direct fastening allows 5 m/s^2.

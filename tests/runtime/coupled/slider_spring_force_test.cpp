@@ -234,7 +234,6 @@ TEST(HertzContact, ImplicitAndExplicitRunsAgree) {
   double worst = 0.0, peak = 0.0;
   for (std::size_t r = 0; r < a.values.size(); ++r) {
     EXPECT_NEAR(a.values[r][0], b.values[r][0], kRowTimeTol);
-
     worst = std::max(worst, std::abs(a.values[r][f] - b.values[r][f]));
     peak = std::max(peak, std::abs(a.values[r][f]));
   }

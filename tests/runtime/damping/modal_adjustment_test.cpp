@@ -91,7 +91,6 @@ TEST(Policies, TheFloorReadsTheModalMass) {
   // A damping ratio from a root of a quadratic: round-off.
   constexpr double kRatioRoundOff = 1e-12;
   EXPECT_NEAR(-r.first.real() / std::abs(r.first), 0.05, kRatioRoundOff);
-
 }
 
 }  // namespace

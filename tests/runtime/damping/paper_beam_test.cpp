@@ -94,7 +94,6 @@ constexpr double kMassPolicyRootRel = 1e-14;
 // from roots 1e-14 apart, to its own stopping tolerance.
 constexpr double kStepLimitRel = 1e-12;
 
-
 TEST(PaperBeam, MassPolicyReproducesTable1AndEveryStableStep) {
   const BeamPart& p = paper_beams().beams.at(0);
   ir::Adjustment a = paper_model().beams.at(0).adjustment;

@@ -40,8 +40,13 @@ TEST(RunningSurface, ElementDofsCarryTheProfilesValueSlopeAndCurvatureAtS) {
     const double xi = (s - s0) / le;
     const Jet r = surface.profile(s);
     EXPECT_NEAR(hermite::N(xi, le) * (after - before), r.value, kExactTol);
-    EXPECT_NEAR(hermite::dN_ds(xi, le) * (after - before), r.d1, 1e2 * kExactTol);
-    EXPECT_NEAR(hermite::d2N_ds2(xi, le) * (after - before), r.d2, 1e3 * kExactTol);
+    // Slope and curvature from the element DOFs: the shape functions'
+    // derivatives scale the round-off by their sizes (a hundred and a
+    // thousand times, with a margin, on 1 m elements).
+    constexpr double kSlopeTol = 1e2 * kExactTol;
+    constexpr double kCurvatureTol = 1e3 * kExactTol;
+    EXPECT_NEAR(hermite::dN_ds(xi, le) * (after - before), r.d1, kSlopeTol);
+    EXPECT_NEAR(hermite::d2N_ds2(xi, le) * (after - before), r.d2, kCurvatureTol);
   }
 }
 
@@ -59,7 +64,6 @@ TEST(RunningSurface, TableIsTheLinearInterpolationOfTheExpressionItWasSampledFro
   // interpolation's bound h^2 / 8 max |r''| = 0.25 / 8 * 0.002 (2 pi / 25)^2.
   const double bound = h * h / 8 * 0.002 * std::pow(2 * test::kPi / 25, 2);
   constexpr double kBoundMargin = 1.0001;  // the bound widened by 1e-4 of it: the round-off of its terms
-
   for (int k = 0; k < 60; ++k) {
     const double s = k * h;
     EXPECT_NEAR(from_table.profile(s).value, from_expression.profile(s).value, kExactTol);
@@ -138,7 +142,6 @@ TEST(RunningSurface, StaticCamberIsTheSagOfASimplySupportedBeamUnderItsOwnWeight
   // The same solve with the same load: equal but for a last bit (m).
   constexpr double kSameSolveTol = 1e-15;
   EXPECT_NEAR(running_surface(loaded, gravity)->camber()[20], surface->camber()[20], kSameSolveTol);
-
   // A beam no support holds has no own-weight sag to take out.
   ir::Beam hung = beam;
   hung.supports.clear();

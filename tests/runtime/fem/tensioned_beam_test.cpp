@@ -118,7 +118,6 @@ TEST(ElasticSupports, BounceModeOfAStiffBeamOnTwoSpringsWithMasses) {
   for (std::size_t i = 0; i < sys.full_to_free.size(); i += 2) ones[sys.full_to_free[i]] = 1.0;
   constexpr double kMassSumRoundOff = 1e-12;  // a sum of the mass matrix's entries, relative
   EXPECT_NEAR(ones.dot(sys.M * ones), total, kMassSumRoundOff * total);
-
 }
 
 }  // namespace

@@ -59,7 +59,6 @@ TEST(TrackSpectrum, DerivativesOfTheSumAreThoseOfItsTerms) {
     p.evaluate(s - h, rm, drm, ddrm);
     EXPECT_NEAR(dr, (rp - rm) / (2 * h), kDifferenceTol * std::abs(dr) + kDifferenceFloor);
     EXPECT_NEAR(ddr, (drp - drm) / (2 * h), kDifferenceTol * std::abs(ddr) + kDifferenceFloor);
-
   }
 }
 

@@ -156,7 +156,6 @@ TEST(LoopSystems, AnOpenInitialStateIsProjectedAndAnnounced) {
   constexpr double kKeptAngleTol = 1e-15;  // rad: written and read back as CSV text, a last bit
   EXPECT_NEAR(csv.rows.front()[1], 1.0, kKeptAngleTol);
 
-
   const test::CliRun strict = test::run_cli(
       "simulate models/four_bar.yaml --t-end 0.01 --strict --set initial.q.coupler=-0.5 --out " + out);
   EXPECT_EQ(strict.status, 2) << strict.all();

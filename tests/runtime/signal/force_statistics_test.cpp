@@ -84,7 +84,6 @@ TEST(ForceStatistics, AShortLastIntervalIsLeftOutAndAnUnevenOneInsideRefused) {
   EXPECT_EQ(s.samples, 100);
   constexpr double kFilteredMinTol = 1e-9;  // N: round-off of the filter on ~100 N; the reason for 1e-9 was not recorded
   EXPECT_NEAR(s.min, 100.0, kFilteredMinTol);
-
   EXPECT_EQ(s.loss_percent, 0.0);
 }
 
@@ -179,7 +178,6 @@ TEST(ForceStatistics, TheMeanDoesNotLoseWhatCancels) {
   // The last bits of a number of 7e15: its spacing is 1, so one ulp.
   constexpr double kOneUlpAt7e15 = 1.0;
   EXPECT_NEAR(s.std, std::sqrt(0.5) * 1e16, kOneUlpAt7e15);
-
 }
 
 TEST(ForceStatistics, AConstantFilteredAtAHundredthOfAHertzStaysConstant) {

@@ -205,7 +205,6 @@ TEST(SpatialRigidRun, TorqueFreeBodyConservesEnergyAndAngularMomentum) {
       const Eigen::Map<const Eigen::VectorXd> v(r.data() + 8, 6);
       constexpr double kSameEnergyRoundOff = 1e-12;  // J: the same quadratic form summed in another order
       EXPECT_NEAR(0.5 * v.dot(e.M * v), energy, kSameEnergyRoundOff);
-
     }
   }
   EXPECT_LT(worst_energy, kConservedTol);

@@ -225,7 +225,6 @@ TEST(StaticStart, ParkedVehicleDeflectsAsTheClosedFormAndStaysThere) {
   EXPECT_NEAR(-original.values[0][mid], expected, kNewtonRel * expected);
   // The tyre's force at the static start; why this bound is wider than the
   // deflection's was not recorded.
-
   constexpr double kFirstRowForceRel = 1e-6;
   EXPECT_NEAR(original.values[0][original.column("force_tyre")], P, kFirstRowForceRel * P);
 
@@ -274,7 +273,6 @@ TEST(StaticStart, AFineStiffDeckUnderASoftlySprungBodyIsNoMechanism) {
   // differences' half stiffness at a just-touching contact, gone after one step.
   EXPECT_NEAR(rows.values[0][rows.column("force_front_approach")], kAxleLoad, kNewtonRel * kAxleLoad);
   EXPECT_NEAR(rows.values[0][rows.column("force_rear_approach")], kAxleLoad, kNewtonRel * kAxleLoad);
-
 }
 
 /// The independent model: a mass held on the deflected deck (rigid contact),
