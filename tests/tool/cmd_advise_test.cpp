@@ -17,6 +17,10 @@ namespace mbfe::test {
 namespace {
 
 constexpr double kTolerance = 0.01;
+// The estimate is printed as a percentage to one decimal: half of 0.1 %.
+constexpr double kPrintedEstimateTol = 0.0005;
+// The step is printed to five significant digits: 1e-4 of it.
+constexpr double kPrintedStepRel = 1e-4;
 // Just below the chosen limit the estimate must exceed the tolerance: the
 // advise contract is "the lowest limit", not "a limit that passes".
 constexpr double kLowerBy = 0.97;
@@ -44,7 +48,7 @@ TEST(Advise, TheLimitItPrintsIsTheLowestThatMeetsTheToleranceBySimulatesOwnEstim
   const double printed_estimate = std::stod(m[2]) / 100.0;
   const double at_limit = simulated_estimate(dir, limit);
   EXPECT_LE(at_limit, kTolerance);
-  EXPECT_NEAR(printed_estimate, at_limit, 0.0005);  // printed to three digits
+  EXPECT_NEAR(printed_estimate, at_limit, kPrintedEstimateTol);
   EXPECT_GT(simulated_estimate(dir, std::to_string(kLowerBy * std::stod(limit))), kTolerance);
 
   // The RK4 step it prints is mbfe stability's at that limit.
@@ -54,7 +58,7 @@ TEST(Advise, TheLimitItPrintsIsTheLowestThatMeetsTheToleranceBySimulatesOwnEstim
       run_cli("stability " + shell_quote(kModel) + " --set beams.deck.adjustment.omega_limit=" + limit + " --json");
   ASSERT_EQ(s.status, 0) << s.all();
   const double stable_rk4 = nlohmann::json::parse(s.out)["adjusted"]["rk4"].get<double>();
-  EXPECT_NEAR(advised_rk4, stable_rk4, 1e-4 * stable_rk4);  // printed to five digits
+  EXPECT_NEAR(advised_rk4, stable_rk4, kPrintedStepRel * stable_rk4);
   EXPECT_NE(r.out.find("generalized_alpha   original model, at rk4's"), std::string::npos) << r.out;
 }
 

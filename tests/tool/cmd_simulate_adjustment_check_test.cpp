@@ -20,6 +20,8 @@ namespace {
 
 // Both sides compare the same numbers read back exactly from the CSVs.
 constexpr double kSameNumbersRel = 1e-9;
+// s: row times of two runs read back from CSV, sums of different steps.
+constexpr double kRowTimeTol = 1e-12;
 
 std::string full(double x) {
   std::ostringstream o;
@@ -38,7 +40,7 @@ double relative_difference(const Csv& a, const Csv& b, const std::string& column
   for (std::size_t k = 0; k < a.rows.size(); ++k) {
     const std::size_t kb = k * static_cast<std::size_t>(ratio);
     if (kb >= b.rows.size()) break;
-    EXPECT_NEAR(a.rows[k][0], b.rows[kb][0], 1e-12);  // the same time
+    EXPECT_NEAR(a.rows[k][0], b.rows[kb][0], kRowTimeTol);  // the same time
     diff = std::max(diff, std::abs(a.rows[k][ca] - b.rows[kb][cb]));
   }
   return diff / peak;

@@ -26,6 +26,10 @@ using test::run_cli;
 // SciPy's filtered signal against ours: ~1e-11 N of rounding (see
 // butterworth_test.cpp); printed by --json to 17 digits.
 constexpr double kSignalTol = 1e-8;
+// mean +- 3 sd: the mean's error and three times the standard deviation's.
+constexpr double kThreeSigmaTol = 4 * kSignalTol;
+// A number printed to JSON and read back, against the same number here.
+constexpr double kPrintedRoundOff = 1e-12;
 
 using Golden = test::FilterGolden;
 
@@ -62,11 +66,11 @@ TEST(CmdStats, JsonOfAFilteredWindowMatchesScipysSignal) {
   const double sd = std::sqrt(sum2 / n);
   EXPECT_NEAR(j.at("mean").get<double>(), mean, kSignalTol);
   EXPECT_NEAR(j.at("std").get<double>(), sd, kSignalTol);
-  EXPECT_NEAR(j.at("statistical_max").get<double>(), mean + 3 * sd, 4 * kSignalTol);
-  EXPECT_NEAR(j.at("statistical_min").get<double>(), mean - 3 * sd, 4 * kSignalTol);
+  EXPECT_NEAR(j.at("statistical_max").get<double>(), mean + 3 * sd, kThreeSigmaTol);
+  EXPECT_NEAR(j.at("statistical_min").get<double>(), mean - 3 * sd, kThreeSigmaTol);
   EXPECT_NEAR(j.at("max").get<double>(), mx, kSignalTol);
   EXPECT_NEAR(j.at("min").get<double>(), mn, kSignalTol);
-  EXPECT_NEAR(j.at("loss_percent").get<double>(), 100.0 * lost / n, 1e-12);
+  EXPECT_NEAR(j.at("loss_percent").get<double>(), 100.0 * lost / n, kPrintedRoundOff);
   // The text form says the same, with names.
   const CliRun text = run_cli("stats '" + csv + "' --column force_contact --lowpass 20");
   ASSERT_EQ(text.status, 0) << text.err;
@@ -250,9 +254,9 @@ TEST(CmdStatsDeckAcceleration, PeakOfEveryAccelerationColumnAndTheEn1990Check) {
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["columns"].size(), 2u);  // the displacement and the force are not accelerations
   EXPECT_EQ(j["columns"][0]["name"], "deck@10:acc");
-  EXPECT_NEAR(j["columns"][0]["peak"].get<double>(), 4.2, 1e-12);
-  EXPECT_NEAR(j["columns"][1]["peak"].get<double>(), 2.1, 1e-12);
-  EXPECT_NEAR(j["peak"].get<double>(), 4.2, 1e-12);
+  EXPECT_NEAR(j["columns"][0]["peak"].get<double>(), 4.2, kPrintedRoundOff);
+  EXPECT_NEAR(j["columns"][1]["peak"].get<double>(), 2.1, kPrintedRoundOff);
+  EXPECT_NEAR(j["peak"].get<double>(), 4.2, kPrintedRoundOff);
   EXPECT_EQ(j["en1990"]["limit"], 3.5);
   EXPECT_EQ(j["en1990"]["ok"], false);
   // Direct fastening allows 5 m/s^2.

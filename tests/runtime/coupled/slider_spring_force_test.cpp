@@ -22,6 +22,11 @@ namespace {
 
 constexpr double kG = 9.81, kWheelMass = 1000.0;
 constexpr double kHertz = 1.0e10;  // N/m^1.5: a wheel on a rail is of this order
+// The generated force against C_H delta^1.5 evaluated here: one pow and a
+// product, round-off relative to the force.
+constexpr double kForceRoundOff = 1e-12;
+// s: two runs' row times, sums of different steps to the same times.
+constexpr double kRowTimeTol = 1e-12;
 
 /// A wheel on a vertical prismatic joint under a carriage parked (or driven)
 /// along a simply supported deck; `contact` the slider_spring's law keys.
@@ -86,7 +91,7 @@ TEST(HertzContact, ForceFollowsTheLawAndIsZeroWhenApart) {
       const runtime::SpringContactState& st = dyn->spring_state(0);
       if (st.delta > 0.0) {
         ++pressed;
-        EXPECT_NEAR(st.force, kHertz * std::pow(st.delta, 1.5), 1e-12 * st.force);
+        EXPECT_NEAR(st.force, kHertz * std::pow(st.delta, 1.5), kForceRoundOff * st.force);
       } else {
         ++apart;
         EXPECT_EQ(st.force, 0.0) << "delta " << st.delta << ", unilateral " << unilateral;
@@ -160,8 +165,12 @@ TEST(HertzContact, TangentMatchesFiniteDifferencesOfTheForce) {
     vp[j] += 1e-3;
     vm[j] -= 1e-3;
     const Eigen::VectorXd fdv = -(force(q, vp) - force(q, vm)) / 2e-3;  // linear in the rates: exact
+    // Exact but for the round-off of forces of the Hertz stiffness's size
+    // divided by 2e-3, relative to the largest rate tangent.
+    constexpr double kLinearDifferenceTol = 1e-9;
     for (int i = 1; i < n; ++i)
-      EXPECT_NEAR(tangent_v(i, j), fdv[i], 1e-9 * (1.0 + tangent_v.cwiseAbs().maxCoeff())) << "d f_" << i << " / d v_" << j;
+      EXPECT_NEAR(tangent_v(i, j), fdv[i], kLinearDifferenceTol * (1.0 + tangent_v.cwiseAbs().maxCoeff()))
+          << "d f_" << i << " / d v_" << j;
   }
 }
 
@@ -224,7 +233,7 @@ TEST(HertzContact, ImplicitAndExplicitRunsAgree) {
   const std::size_t f = a.column("force_tyre");
   double worst = 0.0, peak = 0.0;
   for (std::size_t r = 0; r < a.values.size(); ++r) {
-    EXPECT_NEAR(a.values[r][0], b.values[r][0], 1e-12);
+    EXPECT_NEAR(a.values[r][0], b.values[r][0], kRowTimeTol);
     worst = std::max(worst, std::abs(a.values[r][f] - b.values[r][f]));
     peak = std::max(peak, std::abs(a.values[r][f]));
   }

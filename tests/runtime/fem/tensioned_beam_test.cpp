@@ -116,7 +116,8 @@ TEST(ElasticSupports, BounceModeOfAStiffBeamOnTwoSpringsWithMasses) {
   // The masses sit on w: M's total translational mass is the beam's plus them.
   Eigen::VectorXd ones = Eigen::VectorXd::Zero(sys.M.rows());
   for (std::size_t i = 0; i < sys.full_to_free.size(); i += 2) ones[sys.full_to_free[i]] = 1.0;
-  EXPECT_NEAR(ones.dot(sys.M * ones), total, 1e-12 * total);
+  constexpr double kMassSumRoundOff = 1e-12;  // a sum of the mass matrix's entries, relative
+  EXPECT_NEAR(ones.dot(sys.M * ones), total, kMassSumRoundOff * total);
 }
 
 }  // namespace

@@ -56,7 +56,8 @@ TEST(SmallLu, NeedsPivoting) {
   const Eigen::VectorXd b = Eigen::Vector3d(1, 2, 3);
   Eigen::VectorXd x;
   lu.solve(b, x);
-  EXPECT_LE((a * x - b).norm(), 1e-14);
+  constexpr double kResidualRoundOff = 1e-14;  // a 3 x 3 system of O(1) entries: a residual of round-off
+  EXPECT_LE((a * x - b).norm(), kResidualRoundOff);
 }
 
 // Two inverses of matrices with cond < 1e4: each good to ~cond * eps.

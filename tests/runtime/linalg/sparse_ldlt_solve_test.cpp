@@ -62,7 +62,8 @@ TEST(SparseLdltSolve, IntoASegmentOfALargerVector) {
   mbfe::runtime::solve_ldlt(f, b, whole.segment(10, 30), work);
   EXPECT_EQ(whole.head(10), Eigen::VectorXd::Constant(10, 7.0));
   EXPECT_EQ(whole.tail(10), Eigen::VectorXd::Constant(10, 7.0));
-  EXPECT_LE((a * whole.segment(10, 30) - b).cwiseAbs().maxCoeff(), 1e-12);  // a residual of round-off
+  constexpr double kResidualRoundOff = 1e-12;  // a 30 x 30 SPD solve: a residual of round-off
+  EXPECT_LE((a * whole.segment(10, 30) - b).cwiseAbs().maxCoeff(), kResidualRoundOff);
 }
 
 }  // namespace

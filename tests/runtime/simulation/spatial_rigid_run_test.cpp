@@ -85,7 +85,8 @@ TEST(SpatialRigidRun, DoublePendulum3dFollowsItsEquationsByHand) {
     y += kStep / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
   }
   const std::vector<double>& last = rows.values.back();
-  EXPECT_NEAR(last[0], kEnd, 1e-12);
+  constexpr double kTimeRoundOff = 1e-12;  // s: 1000 sums of the step
+  EXPECT_NEAR(last[0], kEnd, kTimeRoundOff);
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(last[1 + i], y[i], kTrajectoryTol) << rows.columns[1 + i];
 }
 
@@ -202,7 +203,8 @@ TEST(SpatialRigidRun, TorqueFreeBodyConservesEnergyAndAngularMomentum) {
       s.qd.assign(r.begin() + 8, r.end());
       const Evaluation e = model.evaluate(s);
       const Eigen::Map<const Eigen::VectorXd> v(r.data() + 8, 6);
-      EXPECT_NEAR(0.5 * v.dot(e.M * v), energy, 1e-12);
+      constexpr double kSameEnergyRoundOff = 1e-12;  // J: the same quadratic form summed in another order
+      EXPECT_NEAR(0.5 * v.dot(e.M * v), energy, kSameEnergyRoundOff);
     }
   }
   EXPECT_LT(worst_energy, kConservedTol);

@@ -1,0 +1,93 @@
+// CoupledDynamics in split coordinates (docs/damping-adjustment.md, "Split
+// coordinates"): which low-rank beams are split, the maps between their
+// nodal and split coordinates, and their kept modes' accelerations.
+#include "runtime/coupled/coupled_dynamics.h"
+
+namespace mbfe::runtime {
+
+bool CoupledDynamics::split_low_rank_beams() {
+  if (!split_structure_.empty()) return true;
+  if (!model_->splittable()) return false;
+  const auto& structures = model_->structures();
+  split_of_structure_.assign(structures.size(), -1);
+  int size = 0;
+  for (std::size_t s = 0; s < structures.size(); ++s) {
+    const LowRankStructure& st = *structures[s];
+    if (st.ranges().size() != 1 || st.every_mode()) continue;
+    split_of_structure_[s] = static_cast<int>(split_structure_.size());
+    split_structure_.push_back(static_cast<int>(s));
+    split_offset_.push_back(size);
+    size += 2 * st.rank();
+  }
+  split_size_ = size;
+  data_.split_acc.setZero(size);
+  return true;
+}
+
+void CoupledDynamics::split_to_nodal(int k, const Eigen::Ref<const Eigen::VectorXd>& s, const Eigen::VectorXd& e,
+                                     Eigen::Ref<Eigen::VectorXd> q) const {
+  const LowRankStructure& st = *model_->structures()[split_structure_[k]];
+  const Eigen::Index m = st.rank();
+  const int o = split_offset_[k];
+  q = s;
+  q.noalias() += st.phi() * (e.segment(o, m) - e.segment(o + m, m));
+}
+
+double CoupledDynamics::split_to_nodal(int k, int dof, double s, const Eigen::VectorXd& e) const {
+  const LowRankStructure& st = *model_->structures()[split_structure_[k]];
+  const Eigen::Index m = st.rank();
+  const int o = split_offset_[k];
+  return s + st.phi().row(dof).dot(e.segment(o, m) - e.segment(o + m, m));
+}
+
+void CoupledDynamics::split_from_nodal(const Eigen::Ref<const Eigen::VectorXd>& qc, Eigen::VectorXd& e) const {
+  e.resize(split_size_);
+  for (std::size_t k = 0; k < split_structure_.size(); ++k) {
+    const LowRankStructure& st = *model_->structures()[split_structure_[k]];
+    const Eigen::Index m = st.rank();
+    const int o = split_offset_[k];
+    const LowRankStructure::Range& r = st.ranges().front();
+    e.segment(o, m).noalias() = st.phi().transpose() * (st.M() * qc.segment(r.offset, r.size));
+    e.segment(o + m, m) = e.segment(o, m);
+  }
+}
+
+void CoupledDynamics::split_accelerations(int k, const Eigen::Ref<const Eigen::VectorXd>& s,
+                                          const Eigen::Ref<const Eigen::VectorXd>& sd, const double* f,
+                                          const SplitState& split, Eigen::Ref<Eigen::VectorXd> a) {
+  const LowRankStructure& st = *model_->structures()[split_structure_[k]];
+  CoupledData& d = data_;
+  const Eigen::Index m = st.rank();
+  const int o = split_offset_[k];
+  const double mu_m = st.mass().mu, mu_c = st.damping().mu, mu_k = st.stiffness().mu;
+  // s'' = B^-1 (P + f) / mu_M - (mu_C s' + mu_K s) / mu_M, and the kept
+  // modes' load g = Phi_L^T (P + f) from the rows of Phi_L where f is not
+  // zero (contacts, links, point loads).
+  a = st.base_load_response() - (mu_c / mu_m) * sd - (mu_k / mu_m) * s;
+  // Each structure's own scratch: the two wires of a catenary differ in size.
+  LowRankStructure::Workspace& ws = d.structures[static_cast<std::size_t>(split_structure_[k])];
+  Eigen::VectorXd& g = ws.modal_g;
+  g = st.modal_loads();
+  const Eigen::Map<const Eigen::VectorXd> loads(f, f != nullptr ? s.size() : 0);
+  if (f != nullptr && !loads.isZero(0.0)) {
+    ws.r = loads;
+    st.solve_base(ws.r, ws.base_solve, ws);
+    a += ws.base_solve / mu_m;
+    for (Eigen::Index i = 0; i < loads.size(); ++i)
+      if (loads[i] != 0.0) {
+        const double* row = st.phi().data() + i * m;  // row-major: row i is contiguous
+        for (Eigen::Index j = 0; j < m; ++j) g[j] += loads[i] * row[j];
+      }
+  }
+  const auto eta = split.e.segment(o, m), zeta = split.e.segment(o + m, m);
+  const auto etad = split.ed.segment(o, m), zetad = split.ed.segment(o + m, m);
+  const auto b = st.base_modal().array();
+  d.split_acc.segment(o, m) = ((g.array() - (mu_c * b + st.damping().d.array()) * etad.array() -
+                                (mu_k * b + st.stiffness().d.array()) * eta.array()) /
+                               (mu_m * b + st.mass().d.array()))
+                                  .matrix();
+  d.split_acc.segment(o + m, m) =
+      (g.array() / (mu_m * b) - (mu_c / mu_m) * zetad.array() - (mu_k / mu_m) * zeta.array()).matrix();
+}
+
+}  // namespace mbfe::runtime
