@@ -37,16 +37,18 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 /// The shipped moving-mass bridge started as written (its static start
-/// fails with E in GPa, for the reason the warning gives: the deck sags 7.6e7 m),
-/// and the same file with E in GPa typed as Pa. The warning points at the
+/// fails with E in GPa, for the reason the warning gives: the deck sags 7.6e7 m)
+/// on a coarse mesh, and the same file with E in GPa typed as Pa. The warning points at the
 /// deck's entry, line 27.
 struct Models {
   TempDir dir;
   std::string plausible = (dir / "bridge.yaml").string();
   std::string gpa = (dir / "bridge_gpa.yaml").string();
   Models() {
-    const std::string text =
-        replaced(slurp(source("models/bridge_moving_mass.yaml")), "initial: {static: true}", "initial: {}");
+    // Four elements instead of 40: stability and advise linearize the model.
+    const std::string text = replaced(
+        replaced(slurp(source("models/bridge_moving_mass.yaml")), "initial: {static: true}", "initial: {}"),
+        "elements: 40", "elements: 4");
     spit(plausible, text);
     spit(gpa, replaced(text, "youngs_modulus: 2.1e11", "youngs_modulus: 210"));
   }
@@ -87,7 +89,6 @@ TEST(ModelWarningsNotice, StabilityWarnsOnceAndListsItInItsJson) {
   const Models m;
   const CliRun r = expect_warned_once(m, "stability", "--json");
   expect_json_warning(r.out, "stability");
-  expect_warned_once(m, "stability", "");
 }
 
 TEST(ModelWarningsNotice, ModalWarnsOnceAndListsItInItsJson) {
