@@ -230,7 +230,14 @@ class CoupledRun final : public ModelRun {
   }
 
   void fill(SimulationReport& report) const override {
-    if (placed_) place(last_t_, last_y_);  // the last accepted state
+    // The points at the last accepted state serve only the warnings of a
+    // completed run: a state that broke the run keeps the last place found.
+    if (placed_ && last_y_.allFinite()) {
+      try {
+        place(last_t_, last_y_);
+      } catch (const std::exception&) {
+      }
+    }
     report.springs = tallies_->springs();
     report.links = tallies_->links();
   }
