@@ -1,6 +1,8 @@
 #include "api/model_warnings.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <string>
 
@@ -91,11 +93,65 @@ std::vector<std::string> model_warnings(const ir::Model& model) {
   return out;
 }
 
+std::vector<FreeFall> free_falls(const ir::Model& model, const runtime::SimulationReport& report) {
+  std::vector<FreeFall> out;
+  if (!report.message.empty()) return out;
+  std::vector<const ir::Contact*> springs;  // the tallies follow them, in file order
+  for (const ir::Contact& c : model.contacts)
+    if (c.type == ir::ContactType::kSliderSpring) springs.push_back(&c);
+  if (springs.size() != report.springs.size() || springs.empty()) return out;
+  // The structure's size: the largest distance between two beam ends.
+  std::vector<ir::Vec2> ends;
+  for (const ir::Beam& b : model.beams) {
+    ends.push_back(b.origin);
+    ends.push_back({b.origin[0] + b.length * std::cos(b.angle), b.origin[1] + b.length * std::sin(b.angle)});
+  }
+  double size = 0.0;
+  for (const ir::Vec2& a : ends)
+    for (const ir::Vec2& b : ends) size = std::max(size, std::hypot(a[0] - b[0], a[1] - b[1]));
+  const double g = std::hypot(model.gravity[0], model.gravity[1]);
+  for (std::size_t body = 0; body < model.bodies.size(); ++body) {
+    std::optional<FreeFall> nearest;
+    bool touched = false;
+    for (std::size_t k = 0; k < springs.size(); ++k) {
+      if (springs[k]->body != static_cast<int>(body)) continue;
+      const runtime::SpringContactTally& tally = report.springs[k];
+      touched = touched || tally.touched;
+      if (!std::isfinite(tally.end[0]) || !std::isfinite(tally.end[1])) continue;
+      // The distance from the point to the beam's undeformed segment.
+      const ir::Beam& beam = model.beams[static_cast<std::size_t>(springs[k]->beam)];
+      const double ca = std::cos(beam.angle), sa = std::sin(beam.angle);
+      const double dx = tally.end[0] - beam.origin[0], dy = tally.end[1] - beam.origin[1];
+      const double s = std::clamp(dx * ca + dy * sa, 0.0, beam.length);
+      const double distance = std::hypot(dx - s * ca, dy - s * sa);
+      if (nearest && nearest->distance <= distance) continue;
+      FreeFall f;
+      f.body = model.bodies[body].name;
+      f.point = model.bodies[body].points[static_cast<std::size_t>(springs[k]->point)].name;
+      f.beam = beam.name;
+      f.distance = distance;
+      f.size = size;
+      f.fallen = g > 0.0 ? ((tally.end[0] - tally.start[0]) * model.gravity[0] +
+                            (tally.end[1] - tally.start[1]) * model.gravity[1]) / g
+                         : 0.0;
+      f.t = report.run.t;
+      nearest = f;
+    }
+    if (!touched && nearest && nearest->distance > size) out.push_back(*nearest);
+  }
+  return out;
+}
+
 std::vector<std::string> run_warnings(const ir::Model& model, const runtime::SimulationReport& report) {
   std::vector<std::string> out;
   // A run cut short (diverged at its first steps, interrupted) did not give
   // its contacts the whole run to touch.
   if (!report.message.empty()) return out;
+  for (const FreeFall& f : free_falls(model, report))
+    out.push_back("body '" + f.body + "' fell through space: none of its contacts touched a beam, and at t = " +
+                  short_number(f.t) + " s its point '" + f.point + "' is " + short_number(f.distance) +
+                  " m from beam '" + f.beam + "', farther than the structure's size (" + short_number(f.size) +
+                  " m); it fell " + short_number(f.fallen) + " m: check the beams' origin and angle");
   // The tallies follow the slider_spring contacts in file order.
   std::vector<const ir::Contact*> springs;
   for (const ir::Contact& c : model.contacts)

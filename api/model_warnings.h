@@ -36,8 +36,26 @@ inline constexpr PlausibleRange kPlausibleBeamLength{1e-3, 1e4};
 /// file order; empty for a plausible model.
 std::vector<std::string> model_warnings(const ir::Model& model);
 
+/// A body that fell through space (docs/robustness.md, "A vehicle falling
+/// through space"): in a completed run none of its slider_spring contacts
+/// touched a beam, and at the run's end the contact point nearest to a beam
+/// of its contacts is farther from that beam (its undeformed segment) than the
+/// structure's size, the largest distance between two ends of the model's
+/// beams.
+struct FreeFall {
+  std::string body, point, beam;  // the body, its contact point nearest a beam, that beam
+  double distance = 0.0;          // m, from the point to the beam at the end of the run
+  double size = 0.0;              // m, the structure's size
+  double fallen = 0.0;            // m, how far the point moved along gravity during the run (0 without gravity)
+  double t = 0.0;                 // s, the end of the run
+};
+
+/// The bodies of a completed run that fell through space (FreeFall), in
+/// model order; none for a run that diverged, failed or was interrupted.
+std::vector<FreeFall> free_falls(const ir::Model& model, const runtime::SimulationReport& report);
+
 /// The warnings of a completed run (none for a run that diverged, failed or
-/// was interrupted): "contact 'X' never touched the beam
+/// was interrupted): "body 'wheel' fell through space: ..." for each FreeFall, then "contact 'X' never touched the beam
 /// during the run" for each slider_spring contact that never touched its
 /// beam while its point was over it, or whose body touched no beam at all
 /// during the run (a vehicle falling past the bridge). Not for a contact

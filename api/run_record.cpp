@@ -68,6 +68,11 @@ nlohmann::json run_record(const Model& model, const runtime::SimulationRequest& 
   for (const std::string& w : model_warnings(model.ir())) warnings.push_back(w);
   for (const std::string& w : run_warnings(model.ir(), report)) warnings.push_back(w);
   j["warnings"] = warnings;
+  nlohmann::json falls = nlohmann::json::array();
+  for (const FreeFall& f : free_falls(model.ir(), report))
+    falls.push_back({{"body", f.body}, {"point", f.point}, {"beam", f.beam}, {"distance", f.distance},
+                     {"structure_size", f.size}, {"fallen", f.fallen}, {"t", f.t}});
+  if (!falls.empty()) j["free_falls"] = falls;
   if (report.adjustment_estimate) j["adjustment_estimate"] = adjustment_estimate_json(*report.adjustment_estimate);
   return j;
 }

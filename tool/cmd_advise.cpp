@@ -14,6 +14,7 @@
 #include "runtime/simulation/assembled_model.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/model_warnings_notice.h"
 
 namespace mbfe::tool {
 
@@ -94,6 +95,7 @@ int cmd_advise(const Args& args) {
   load.quiet = parsed.has("quiet");
   load.overrides = model_overrides(parsed);
   const Model given = Model::load(parsed.positional()[0], load);
+  announce_model_warnings(given.ir());
   ir::Model ir = given.ir();
   bool any = false;
   for (ir::Beam& beam : ir.beams)

@@ -12,6 +12,7 @@
 #include "ir/coordinate_layout.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/model_warnings_notice.h"
 #include "api/json_text.h"
 
 namespace mbfe::tool {
@@ -25,7 +26,9 @@ Q(q, q', t) of M q'' + F = Q at time --t (s, default 0: time-dependent loads
 and driven joints). Coordinates are in model order (one per body); missing
 --q/--qd mean zeros; a driven joint's coordinate and rate are its motion's at
 --t, whatever --q/--qd say. With --json the output is
-  {"M": [[...], ...], "F": [...], "Q": [...]}
+  {"M": [[...], ...], "F": [...], "Q": [...], "warnings": [...]}
+with "warnings" the lines printed on stderr about likely unit mistakes
+(docs/robustness.md, "Warnings"; empty when none).
 
 For a model with contacts, --qc/--qcd give the beam coordinates and their rates
 (all beams in file order, each beam's free DOFs [w, w'] per node from s = 0 to
@@ -67,7 +70,7 @@ std::vector<double> list_of(const Eigen::VectorXd& v) { return std::vector<doubl
 
 /// A spatial model or one with closed loops, which the runtime does not take
 /// yet: its generated kernels called directly.
-int eval_generated_kernels(const ir::Model& model, const ParsedArgs& parsed) {
+int eval_generated_kernels(const ir::Model& model, const ParsedArgs& parsed, const std::vector<std::string>& warnings) {
   const ir::CoordinateLayout layout = ir::coordinate_layout(model);
   const int nq = layout.num_positions, nv = layout.num_velocities;
   Eigen::VectorXd q = Eigen::VectorXd::Zero(nq), v = Eigen::VectorXd::Zero(nv);
@@ -110,6 +113,7 @@ int eval_generated_kernels(const ir::Model& model, const ParsedArgs& parsed) {
     k.loop_gamma(q.data(), v.data(), gamma.data());
     out["loops"] = {{"Phi", list_of(phi)}, {"J", rows_of(J)}, {"gamma", list_of(gamma)}};
   }
+  out["warnings"] = warnings_json(warnings);
   if (parsed.has("json")) {
     std::cout << out.dump() << "\n";
     return 0;
@@ -133,9 +137,11 @@ int cmd_eval(const Args& args) {
     return 0;
   }
   if (parsed.positional().size() != 1) throw UsageError("expected one model file (see --help)");
+  std::vector<std::string> warnings;
   {
     const ir::Model ir = frontend::load_model_file(parsed.positional()[0], {}, model_overrides(parsed));
-    if (ir.dimension == 3 || !ir.constraints.empty()) return eval_generated_kernels(ir, parsed);
+    warnings = announce_model_warnings(ir);
+    if (ir.dimension == 3 || !ir.constraints.empty()) return eval_generated_kernels(ir, parsed, warnings);
   }
   LoadOptions load;
   load.quiet = parsed.has("quiet") || parsed.has("json");
@@ -172,6 +178,7 @@ int cmd_eval(const Args& args) {
     c["gamma"] = list_of(e.gamma);
     out["constraints"] = c;
   }
+  out["warnings"] = warnings_json(warnings);
   if (parsed.has("json")) {
     std::cout << json_text(out) << "\n";
   } else {

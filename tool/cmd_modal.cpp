@@ -16,6 +16,7 @@
 #include "runtime/errors/invalid_input.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/model_warnings_notice.h"
 #include "api/json_text.h"
 #include "tool/linearization_notice.h"
 #include "tool/modal_report.h"
@@ -44,7 +45,9 @@ eigenvalue and forward Euler's stable-step limit h_max = min -2 Re / |lambda|^2.
 Options:
   --json        print {"beams": [{"name", "dof", "natural_frequencies_rad_s",
                 "original": {"eigenvalues": [[re, im], ...], "oscillatory_pairs",
-                "h_max": {"forward_euler"}}}]} instead of the table
+                "h_max": {"forward_euler"}}}], "warnings": [...]} instead of the
+                table ("warnings": the lines about likely unit mistakes also
+                printed on stderr, docs/robustness.md)
   --all         print every row (default: the first and last five, "..." between)
   --beam NAME   only this beam
   --modes K     modes found by the sparse path for beams above 2000 DOF (default 20)
@@ -96,6 +99,7 @@ int cmd_modal(const Args& args) {
   }
   const std::string& path = parsed.positional()[0];
   const ir::Model m = frontend::load_model_file(path);
+  const std::vector<std::string> warnings = announce_model_warnings(m);
   if (m.beams.empty()) {
     std::cerr << "mbfe modal: " << path << ": model '" << m.name
               << "' has no beams; modal analysis needs at least one (see `beams:`)\n";
@@ -196,6 +200,7 @@ int cmd_modal(const Args& args) {
       add_adjusted_json(beam, *chosen[i], results[i]);
       root["beams"].push_back(std::move(beam));
     }
+    root["warnings"] = warnings_json(warnings);
     std::cout << json_text(root, 2) << "\n";
     return 0;
   }

@@ -89,7 +89,11 @@ Options:
                      beams.bridge.section.inertia=0.3); errors point into the
                      file and name the --set
   --strict           an initial state that violates the contacts is an error
-                     (exit 2) instead of being projected onto them
+                     (exit 2) instead of being projected onto them; so is a
+                     body that fell through space (no contact of it touched a
+                     beam and it ended farther from the beams than the
+                     structure's size; docs/robustness.md), after the run,
+                     its rows kept
   --quiet            no progress or cache messages on stderr
 
 An output (--out, its sidecar, the --vtk folder) that is the model file, a
@@ -327,6 +331,13 @@ int cmd_simulate(const Args& args) {
   if (out) write_run_record(*out, record);
   const runtime::SimulationResult& run = report.run;
   const std::string where = out ? " to " + *out : std::string();
+  if (parsed.has("strict") && report.message.empty())
+    if (const std::vector<FreeFall> falls = free_falls(model.ir(), report); !falls.empty()) {
+      std::cerr << "mbfe simulate: --strict: body '" << falls.front().body
+                << "' fell through space (the warning above says where); " << csv.rows() << " rows written"
+                << where << "\n";
+      return 2;
+    }
   const std::string variant = report.variant.empty() ? "" : " (" + report.variant + ")";
   if (report.message.empty()) {
     if (!quiet)

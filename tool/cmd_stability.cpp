@@ -19,6 +19,7 @@
 #include "runtime/simulation/assembled_model.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/model_warnings_notice.h"
 #include "api/json_text.h"
 #include "tool/linearization_notice.h"
 
@@ -63,7 +64,8 @@ Options:
   --json   print {"original": {"forward_euler": h, "rk4": h, ...},
            "adjusted": {...}} (steps in s; the strings "unconditional" and
            "none" where they apply; "adjusted" is null when no beam has an
-           adjustment block)
+           adjustment block; "warnings": the lines about likely unit
+           mistakes also printed on stderr, docs/robustness.md)
   --set PATH=VALUE  replace a value of the model file first (repeatable; as
            mbfe simulate --set)
 
@@ -107,6 +109,7 @@ int cmd_stability(const Args& args) {
   LoadOptions load;
   load.overrides = model_overrides(parsed);
   const Model model = Model::load(path, load);
+  const std::vector<std::string> warnings = announce_model_warnings(model.ir());
   const runtime::ModelKind kind = model.kind();
   const bool coupled = kind == runtime::ModelKind::kCoupled;
   const bool rigid = kind == runtime::ModelKind::kRigid;
@@ -131,6 +134,7 @@ int cmd_stability(const Args& args) {
     nlohmann::json root;
     root["original"] = limits_json(limits, false);
     root["adjusted"] = any_adjustment ? limits_json(limits, true) : nlohmann::json(nullptr);
+    root["warnings"] = warnings_json(warnings);
     std::cout << json_text(root, 2) << "\n";
     return 0;
   }

@@ -41,6 +41,9 @@ Runs a parameter study: one model file with some of its values varied
 (docs/sweeps.md). Every point gets DIR/points/<i>/ with its model.yaml (run it
 again by hand with mbfe simulate), run.csv and result.json; DIR/summary.csv and
 DIR/summary.json list each point's values, status and collected statistics.
+Warnings about likely unit mistakes in the model file or a point's values
+(docs/robustness.md, "Warnings") are printed once for the sweep, not per
+point, and listed under "warnings" in summary.json.
 
   --jobs N         points run at once on this machine (default: every core)
   --point I        run point I only (what each Slurm task does)
@@ -109,7 +112,8 @@ std::string solver_key(const ir::Sweep& sweep, const std::string& model_text, lo
 }
 
 int run_local(const ir::Sweep& sweep, const std::string& sweep_file, const std::string& model_text,
-              const std::string& out_dir, long jobs, bool quiet, const std::vector<std::string>& model_sets) {
+              const std::string& out_dir, long jobs, bool quiet, const std::vector<std::string>& model_sets,
+              const std::vector<std::string>& warnings) {
   const long n = sweep.points();
   std::vector<long> todo;
   long stale = 0;
@@ -172,7 +176,7 @@ int run_local(const ir::Sweep& sweep, const std::string& sweep_file, const std::
     }
   }
   if (!quiet && ::isatty(2)) std::fprintf(stderr, "\n");
-  const SweepCounts c = write_summary(sweep, model_text, out_dir);
+  const SweepCounts c = write_summary(sweep, model_text, out_dir, warnings);
   if (!quiet)
     std::cerr << "mbfe sweep: " << c.done << " done, " << c.failed << " failed" << (c.missing ? ", " : "")
               << (c.missing ? std::to_string(c.missing) + " missing" : "") << "; summary in " << out_dir
@@ -229,8 +233,11 @@ int cmd_sweep(const Args& args) {
     if (!quiet) std::cerr << "mbfe sweep: point " << r.point << (r.done ? " done" : " failed: " + r.message) << "\n";
     return r.exit_status;
   }
+  // Likely unit mistakes, once for the whole sweep (a point's run says nothing of them).
+  const std::vector<std::string> warnings = sweep_warnings(sweep, model_text, model_overrides(parsed), *out);
+  for (const std::string& w : warnings) std::cerr << w << "\n";
   if (parsed.has("collect")) {
-    const SweepCounts c = write_summary(sweep, model_text, *out);
+    const SweepCounts c = write_summary(sweep, model_text, *out, warnings);
     if (!quiet)
       std::cerr << "mbfe sweep: " << c.done << " done, " << c.failed << " failed, " << c.missing << " missing"
                 << (c.stale ? " (" + std::to_string(c.stale) + " with a result of another request)" : "") << "\n";
@@ -259,7 +266,7 @@ int cmd_sweep(const Args& args) {
     if (*j < 1 || *j != std::floor(*j)) throw UsageError("--jobs must be a positive whole number");
     jobs = static_cast<long>(*j);
   }
-  return run_local(sweep, sweep_file, model_text, *out, jobs, quiet, parsed.values("set"));
+  return run_local(sweep, sweep_file, model_text, *out, jobs, quiet, parsed.values("set"), warnings);
 }
 
 }  // namespace mbfe::tool

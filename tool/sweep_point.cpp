@@ -9,9 +9,12 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <sstream>
 
 #include "api/mbfe.h"
+#include "api/model_warnings.h"
+#include "frontend/parse_model.h"
 #include "frontend/parse_sweep.h"
 #include "frontend/sha256.h"
 #include "api/json_text.h"
@@ -299,7 +302,33 @@ std::optional<PointResult> read_point_result(const ir::Sweep& sweep, const std::
   }
 }
 
-SweepCounts write_summary(const ir::Sweep& sweep, const std::string& model_text, const std::string& out_dir) {
+std::vector<std::string> sweep_warnings(const ir::Sweep& sweep, const std::string& model_text,
+                                        const ir::ModelOverrides& overrides, const std::string& out_dir) {
+  std::vector<std::string> out;
+  std::set<std::string> said;  // each warning without its file:line:col
+  const auto add = [&](const std::vector<std::string>& warnings) {
+    for (const std::string& w : warnings) {
+      const std::size_t at = w.find("warning: ");
+      if (said.insert(at == std::string::npos ? w : w.substr(at)).second) out.push_back(w);
+    }
+  };
+  try {
+    add(model_warnings(frontend::load_model_file(frontend::sweep_model_path(sweep), {}, overrides)));
+  } catch (const std::exception&) {
+    // The points report why the model does not load.
+  }
+  for (long i = 0; i < sweep.points(); ++i) {
+    try {
+      const std::string text = frontend::point_model_text(sweep, model_text, i);
+      add(model_warnings(frontend::parse_model_text(text, point_dir(out_dir, i) + "/model.yaml")));
+    } catch (const std::exception&) {
+    }
+  }
+  return out;
+}
+
+SweepCounts write_summary(const ir::Sweep& sweep, const std::string& model_text, const std::string& out_dir,
+                          const std::vector<std::string>& warnings) {
   SweepCounts counts;
   std::ostringstream csv;
   csv << "point";
@@ -349,6 +378,7 @@ SweepCounts write_summary(const ir::Sweep& sweep, const std::string& model_text,
   summary["done"] = counts.done;
   summary["failed"] = counts.failed;
   summary["missing"] = counts.missing;
+  summary["warnings"] = warnings;
   fs::create_directories(out_dir);
   write_atomically(fs::path(out_dir) / "summary.csv", csv.str());
   write_atomically(fs::path(out_dir) / "summary.json", json_text(summary, 2) + "\n");

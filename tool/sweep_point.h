@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ir/model_override.h"
 #include "ir/sweep.h"
 
 namespace mbfe::tool {
@@ -43,7 +44,17 @@ struct SweepCounts {
   long stale = 0;  // of the missing: a result of another request is there
 };
 
-/// Writes DIR/summary.csv and DIR/summary.json from the result files present.
-SweepCounts write_summary(const ir::Sweep& sweep, const std::string& model_text, const std::string& out_dir);
+/// The sweep's warnings about likely unit mistakes (api/model_warnings.h),
+/// once each: those of the model file with the --set `overrides` (at its
+/// file:line:col), then those that only a point's values bring (at the first
+/// such point's DIR/points/<i>/model.yaml). Empty for a plausible sweep; a
+/// point that does not parse adds nothing (its own run reports why).
+std::vector<std::string> sweep_warnings(const ir::Sweep& sweep, const std::string& model_text,
+                                        const ir::ModelOverrides& overrides, const std::string& out_dir);
+
+/// Writes DIR/summary.csv and DIR/summary.json from the result files present;
+/// summary.json lists `warnings` (sweep_warnings) under "warnings".
+SweepCounts write_summary(const ir::Sweep& sweep, const std::string& model_text, const std::string& out_dir,
+                          const std::vector<std::string>& warnings);
 
 }  // namespace mbfe::tool

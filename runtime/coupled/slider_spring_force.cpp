@@ -39,6 +39,8 @@ double SliderSpringForce::law_stiffness(double delta) const {
   return delta > 0.0 ? 1.5 * law_.coefficient * std::sqrt(delta) : 0.0;
 }
 
+double SliderSpringForce::surface_offset(double s) const { return mesh_.surface ? mesh_.surface->offset(s) : 0.0; }
+
 std::unique_ptr<ForceState> SliderSpringForce::make_state() const {
   auto state = std::make_unique<State>();
   state->gradient.jb.resize(static_cast<std::size_t>(std::max(1, nb_)));

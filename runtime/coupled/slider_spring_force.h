@@ -94,6 +94,12 @@ class SliderSpringForce final : public ForceElement {
   double law_force(double delta, double rate) const;
   double law_stiffness(double delta) const;
   double damping() const { return kernels_.damping; }      // N s/m
+  /// The running surface's offset from the beam's deflection at s (m, along
+  /// +w: profile minus camber; 0 on a beam without either), and the side the
+  /// point presses from (+1 a wheel on a deck, -1 `side: below`): delta
+  /// without the offset is delta - side() * surface_offset(s).
+  double surface_offset(double s) const;
+  double side() const { return kernels_.from_below ? -1.0 : 1.0; }
 
   std::unique_ptr<ForceState> make_state() const override;
   void add_force(const ForceArgs& x, ForceState& state, ForceSink& out) const override;

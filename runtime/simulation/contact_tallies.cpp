@@ -1,11 +1,15 @@
 #include "runtime/simulation/contact_tallies.h"
 
+#include <cmath>
+
 namespace mbfe::runtime {
 
-ContactTallies::ContactTallies(const CoupledModel& model) {
+ContactTallies::ContactTallies(const CoupledModel& model, const ir::Model& ir) {
   for (const SliderSpringForce* s : model.slider_springs()) {
     springs_.emplace_back();
     springs_.back().name = s->name();
+    const ir::Contact& c = ir.contacts[static_cast<std::size_t>(s->contact())];
+    spring_point_.push_back({c.body, c.point});
   }
   for (std::size_t k = 0; k < model.links().size(); ++k) {
     const LinkForce& l = *model.links()[k];
@@ -35,6 +39,16 @@ void ContactTallies::count(double t, const CoupledDynamics& dynamics) {
     c.seen = c.seen || st.on_beam;
   }
   t_prev_ = t;
+}
+
+void ContactTallies::place(const CoupledDynamics& dynamics, const Eigen::VectorXd& q) {
+  const mbfe_model_v1& kernels = dynamics.kernels();
+  if (kernels.point_position == nullptr) return;
+  for (std::size_t k = 0; k < springs_.size(); ++k) {
+    SpringContactTally& c = springs_[k];
+    kernels.point_position(q.data(), spring_point_[k][0], spring_point_[k][1], c.end.data());
+    if (std::isnan(c.start[0])) c.start = c.end;
+  }
 }
 
 }  // namespace mbfe::runtime

@@ -145,7 +145,7 @@ class CoupledRun final : public ModelRun {
     for (const BeamProbe& p : probes_)
       for (int a = 0; a < 4; ++a)
         if (p.body < 0 && p.weights.free_index[a] >= 0) probe_dofs_.push_back(p.offset + p.weights.free_index[a]);
-    tallies_ = std::make_unique<ContactTallies>(dynamics_->model());
+    tallies_ = std::make_unique<ContactTallies>(dynamics_->model(), model.ir());
   }
 
   OdeSystem& system() override { return *system_; }
@@ -216,9 +216,28 @@ class CoupledRun final : public ModelRun {
     if (tallies_->empty()) return;
     system_->report(t, y);  // evaluates the springs and links at this state
     tallies_->count(t, *dynamics_);
+    last_t_ = t;
+    last_y_ = y;
+    if (!placed_) place(t, y);
+  }
+
+  // Where the springs' points are at (t, y) (the tallies' start and end).
+  void place(double t, const Eigen::VectorXd& y) const {
+    system_->full_state_at(t, y, {}, place_q_, place_qd_);
+    dynamics_->impose_motion(t, place_q_, place_qd_);
+    tallies_->place(*dynamics_, place_q_);
+    placed_ = true;
   }
 
   void fill(SimulationReport& report) const override {
+    // The points at the last accepted state serve only the warnings of a
+    // completed run: a state that broke the run keeps the last place found.
+    if (placed_ && last_y_.allFinite()) {
+      try {
+        place(last_t_, last_y_);
+      } catch (const std::exception&) {
+      }
+    }
     report.springs = tallies_->springs();
     report.links = tallies_->links();
   }
@@ -354,6 +373,11 @@ class CoupledRun final : public ModelRun {
   std::vector<std::string> names_;
   Eigen::VectorXd q0_, qd0_, q_, qd_, reactions_;
   std::unique_ptr<ContactTallies> tallies_;
+  // The last accepted state, and scratch for the springs' points there.
+  double last_t_ = 0.0;
+  Eigen::VectorXd last_y_;
+  mutable Eigen::VectorXd place_q_, place_qd_;
+  mutable bool placed_ = false;
 };
 
 }  // namespace

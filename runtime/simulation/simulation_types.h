@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -113,6 +115,9 @@ struct SpringContactTally {
   bool in_contact = false;  // at the last accepted step
   bool seen = false;        // the point was over the beam at an accepted step
   bool touched = false;     // delta > 0 over the beam at an accepted step
+  /// Ground-frame position (m) of the contact point at the first and at the
+  /// last accepted step; NaN when not known (a run without accepted steps).
+  std::array<double, 2> start{NAN, NAN}, end{NAN, NAN};
 };
 
 /// Slack events and time slack of a link over a run, counted on accepted

@@ -3,7 +3,8 @@
 // against the closed-form steady-state response, a slider_pin's constraint
 // against the profile's value, slope and curvature, and a slow vehicle on a
 // bridge cambered for its dead load against the static deflection under the
-// vehicle alone.
+// vehicle alone, and the static start of a wheel over a rail below the beam's
+// axis against the closed-form static deflections.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -281,6 +282,66 @@ TEST(ProfiledContacts, PanHeadUnderAWireFollowsItsHeightIrregularity) {
     const double s = 1.0 + t[i];
     EXPECT_NEAR(y[i], 0.005 * std::sin(2 * kPi * s / 10) + 1e-4, kHeightTol) << "t = " << t[i];
     EXPECT_NEAR(force[i], 100.0, kPressTol) << "t = " << t[i];
+  }
+}
+
+/// A 1000 kg wheel at midspan of a 20 m simply supported steel deck with
+/// gravity on, on a compression-only tyre `law` ("stiffness: 5.0e6,
+/// unilateral: true" or "law: hertz, coefficient: ..."), whose rail lies
+/// 2 mm below the deck's axis under it: r(s) = -0.004 + 0.002 cos(2 pi s / 5),
+/// r(10) = -0.002, r'(10) = 0. Started at height 0, the wheel touches the
+/// axis but not the rail.
+std::string wheel_over_a_low_rail(const std::string& law) {
+  return R"yaml(model: wheel_over_a_low_rail
+gravity: [0, -9.81]
+bodies:
+  - {name: carriage, parent: ground, joint: {type: prismatic, axis: [1, 0], at: [10.0, 0.0], motion: "0*t"}, mass: 0.0, inertia: 0.0}
+  - {name: wheel, parent: carriage, joint: {type: prismatic, axis: [0, 1], at: [0.0, 0.0]}, mass: 1000.0, inertia: 0.0,
+     points: {contact: [0.0, 0.0]}}
+beams:
+  - name: deck
+    origin: [0.0, 0.0]
+    length: 20.0
+    elements: 40
+    section: {area: 0.01, inertia: 1.0e-4}
+    material: {youngs_modulus: 2.1e11, density: 7850}
+    supports: [{at: 0.0, type: pinned}, {at: 20.0, type: pinned}]
+    profile: {expression: "-0.004 + 0.002*cos(2*pi*s/5)"}
+contacts:
+  - {name: tyre, type: slider_spring, body: wheel, point: contact, beam: deck, )yaml" + law + R"yaml(}
+initial: {static: true}
+)yaml";
+}
+
+TEST(ProfiledContacts, StaticStartSeatsTheWheelOnARailBelowTheAxis) {
+  // Closed form: the deck at midspan sags under its own weight and the
+  // wheel's, 5 q L^4 / (384 EI) + W L^3 / (48 EI) (Hermite elements are exact
+  // at the nodes; s = 10 is one), the tyre carries the weight W, and the
+  // wheel sits at r(10) + w(10) minus the tyre's compression: W / k for the
+  // linear tyre, (W / C_H)^(2/3) for Hertz's.
+  const double W = 1000 * 9.81, L = 20, EI = 2.1e11 * 1e-4, q = 7850 * 0.01 * 9.81;
+  const double w_mid = -(5 * q * L * L * L * L / (384 * EI) + W * L * L * L / (48 * EI));
+  const double r_mid = -0.002, k = 5e6, C_H = 1e10;
+  // The static Newton converges to 1e-12 of the coordinates, or stalls below
+  // 1e-9 of them (0.15 m here): heights to 1e-9 m, the force to 1e-6 of W.
+  constexpr double kHeightTol = 1e-9;  // m
+  constexpr double kForceTol = 1e-6;   // relative
+  runtime::SimulationRequest request;
+  request.integrator = runtime::parse_integrator("rk4");
+  request.step = 1e-5;
+  request.t_end = 1e-5;
+  request.every = 1;
+  for (const auto& [law, compression] :
+       {std::pair<std::string, double>{"stiffness: 5.0e6, unilateral: true", W / k},
+        {"law: hertz, coefficient: 1.0e10", std::pow(W / C_H, 2.0 / 3.0)}}) {
+    const Model model = Model::parse(wheel_over_a_low_rail(law), "wheel_over_a_low_rail.yaml");
+    test::RecordedRows rows;
+    const runtime::SimulationReport report = model.simulate(request, rows);
+    ASSERT_TRUE(report.message.empty()) << law << ": " << report.message;
+    ASSERT_FALSE(rows.values.empty());
+    EXPECT_NEAR(rows.series("force_tyre")[0] / W, 1.0, kForceTol) << law;
+    EXPECT_NEAR(rows.series("deflection_tyre")[0], w_mid, kHeightTol) << law;
+    EXPECT_NEAR(rows.series("wheel")[0], r_mid + w_mid - compression, kHeightTol) << law;
   }
 }
 

@@ -1,13 +1,15 @@
 // `mbfe simulate` and `mbfe eval` on the vehicle features, through the real
 // binary: a static start of a mechanism (exit 2 at the `static:` key, no output
 // file left), the projection of an inconsistent initial state (a notice, or
-// exit 2 with --strict), a driven joint in `eval --t`, and the columns of a
-// crossing.
+// exit 2 with --strict), a driven joint in `eval --t`, the columns of a
+// crossing, and a vehicle falling through space named (exit 2 with --strict).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <sstream>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "tests/support/cli.h"
 #include "tests/support/process.h"
@@ -144,6 +146,65 @@ TEST(SimulateVehicle, AVehicleThatNeverTouchesItsBeamIsWarnedAbout) {
   EXPECT_EQ(crossing.status, 0) << crossing.all();
   EXPECT_EQ(crossing.err.find("warning"), std::string::npos) << crossing.err;
   EXPECT_NE(slurp(csv.string() + ".json").find("\"touched\": true"), std::string::npos);
+}
+
+TEST(SimulateVehicle, FreeFallOfAVehicleWhoseBridgeIsFarAwayIsNamed) {
+  // The shipped crossing with its deck's origin mistyped 100 m below the
+  // wheel, started as written: the wheel falls, nothing touches, the run
+  // completes. Closed form at t_end = 1.2 s: the wheel at (20 t, -g t^2 / 2)
+  // = (24, -7.063) m, 93.02 m from the deck's segment (0..20, -100) (its end
+  // (20, -100) is nearest), and fallen g (t^2 - h^2) / 2 since the first
+  // accepted step (h = 1e-3 s), which RK4 integrates exactly.
+  TempDir dir;
+  std::string yaml = slurp(source("models/bridge_moving_mass.yaml"));
+  const std::string from = "    origin: [0.0, 0.0]";
+  ASSERT_NE(yaml.find(from), std::string::npos);
+  yaml.replace(yaml.find(from), from.size(), "    origin: [0.0, -100.0]");
+  const fs::path model = dir / "far.yaml";
+  spit(model, yaml);
+  const fs::path csv = dir / "far.csv";
+  const std::string run =
+      "simulate " + shell_quote(model.string()) + " --start given --quiet --out " + shell_quote(csv.string());
+  const CliRun given = run_cli(run);
+  EXPECT_EQ(given.status, 0) << given.all();
+  const double g = 9.81, t = 1.2, h = 1e-3;
+  const double distance = std::hypot(24.0 - 20.0, 100.0 - 0.5 * g * t * t), fallen = 0.5 * g * (t * t - h * h);
+  constexpr double kFallTol = 1e-9;  // m: RK4 exact on the quadratic, the points from the generated kernels
+  EXPECT_NE(given.err.find("mbfe: warning: body 'wheel' fell through space: none of its contacts touched a beam, "
+                           "and at t = 1.2 s its point 'contact' is 93 m from beam 'deck', farther than the "
+                           "structure's size (20 m); it fell 7.06 m: check the beams' origin and angle"),
+            std::string::npos)
+      << given.err;
+  EXPECT_EQ(given.err.find("fell through space", given.err.find("fell through space") + 1), std::string::npos);
+  const nlohmann::json meta = nlohmann::json::parse(slurp(csv.string() + ".json"));
+  ASSERT_TRUE(meta.contains("free_falls")) << meta.dump(2);
+  ASSERT_EQ(meta["free_falls"].size(), 1u);
+  const nlohmann::json& fall = meta["free_falls"][0];
+  EXPECT_EQ(fall["body"], "wheel");
+  EXPECT_EQ(fall["point"], "contact");
+  EXPECT_EQ(fall["beam"], "deck");
+  EXPECT_NEAR(fall["distance"].get<double>(), distance, kFallTol);
+  EXPECT_NEAR(fall["fallen"].get<double>(), fallen, kFallTol);
+  EXPECT_EQ(fall["structure_size"].get<double>(), 20.0);
+  EXPECT_EQ(fall["t"].get<double>(), t);
+  EXPECT_NE(meta["warnings"].dump().find("fell through space"), std::string::npos);
+  // --strict: an error after the run (exit 2), its rows and record kept.
+  const CliRun strict = run_cli(run + " --strict");
+  EXPECT_EQ(strict.status, 2) << strict.all();
+  EXPECT_NE(strict.err.find("mbfe simulate: --strict: body 'wheel' fell through space"), std::string::npos)
+      << strict.err;
+  EXPECT_EQ(read_csv(csv.string()).rows.size(), 1201u);
+  EXPECT_NE(slurp(csv.string() + ".json").find("free_falls"), std::string::npos);
+  // The shipped crossing (touching) and a fall shorter than the structure
+  // (degrees typed as rad, 0.2 s: 0.2 m of fall near the deck's end) are not named.
+  const CliRun crossing = run_cli("simulate models/bridge_moving_mass.yaml --quiet --strict --out " +
+                                  shell_quote(csv.string()));
+  EXPECT_EQ(crossing.status, 0) << crossing.all();
+  EXPECT_EQ(slurp(csv.string() + ".json").find("free_falls"), std::string::npos);
+  const CliRun short_fall = run_cli("simulate models/bridge_moving_mass.yaml --set beams.deck.angle=180 --t-end 0.2 "
+                                    "--start given --quiet --strict --out " + shell_quote(csv.string()));
+  EXPECT_EQ(short_fall.status, 0) << short_fall.all();
+  EXPECT_EQ(short_fall.err.find("fell through space"), std::string::npos) << short_fall.err;
 }
 
 TEST(SimulateVehicle, AnInconsistentInitialStateIsAnnouncedOrRefused) {
