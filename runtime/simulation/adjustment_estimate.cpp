@@ -14,9 +14,11 @@ namespace mbfe::runtime {
 
 namespace {
 
-// Points on a moving point's path: nodes spread along the beam. The static
-// change varies smoothly between nodes (it is a ratio of two smooth point
-// compliances), so a few dozen places find its largest value to a few per cent.
+// Points on a moving point's path: nodes spread along the beam, and the
+// middle of the element after each. The change is largest inside elements,
+// not at nodes: the modes a cap changes carry the element-scale part of the
+// compliance (on the 30 m bridge, 30 elements, cap at 2000 rad/s: 3.9 % at
+// an element's middle against 3.1 % at the nodes).
 constexpr int kPathSamples = 33;
 
 /// A place (or a path) on one beam and what acts there.
@@ -78,6 +80,7 @@ std::vector<double> positions(const Place& place, const BeamSystem& system) {
   for (int k = 0; k < samples; ++k) {
     const int node = samples == 1 ? 0 : static_cast<int>(std::lround(double(k) * (system.num_nodes - 1) / (samples - 1)));
     path.push_back(std::min(system.length, node * system.element_length));
+    if (node + 1 < system.num_nodes) path.push_back((node + 0.5) * system.element_length);
   }
   return path;
 }
