@@ -136,8 +136,12 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
       bool first = true;
       for (const double s : path) {
         const auto point = estimator->point({deflection_weights(system, s), place.series, place.omega});
-        const ComplianceChange change = estimator->evaluate(point, part.adjusted);
+        const ComplianceChange change = estimator->evaluate(point, part.adjusted, /*band=*/true);
         const double estimate = std::max(change.static_change, change.change);
+        if (change.band_change > best.band_change) {
+          best.band_change = change.band_change;
+          best.omega_band = change.band_omega;
+        }
         if (first || estimate > best.estimate) {
           best.s = s;
           best.compliance = change.compliance;
