@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <memory>
 #include <sstream>
+#include <utility>
 #include <stdexcept>
 
 #include "runtime/damping/compliance_change.h"
@@ -85,6 +86,28 @@ std::vector<double> positions(const Place& place, const BeamSystem& system) {
   return path;
 }
 
+// A place on a moving point's path whose static compliance (with the spring
+// in series) is below this share of the path's largest is one the supports
+// hold: its relative change is round-off over round-off, and it is skipped.
+constexpr double kHeldShare = 1e-9;
+
+/// The place's points on the path (positions), without the ones the supports hold.
+std::vector<std::pair<double, ComplianceChangeEstimator::Point>> path_points(const ComplianceChangeEstimator& estimator,
+                                                                            const Place& place,
+                                                                            const BeamSystem& system) {
+  std::vector<std::pair<double, ComplianceChangeEstimator::Point>> out;
+  double largest = 0.0;
+  for (const double s : positions(place, system)) {
+    out.emplace_back(s, estimator.point({deflection_weights(system, s), place.series, place.omega}));
+    largest = std::max(largest, place.series + out.back().second.compliance);
+  }
+  if (place.moving)
+    out.erase(std::remove_if(out.begin(), out.end(),
+                             [&](const auto& p) { return place.series + p.second.compliance < kHeldShare * largest; }),
+              out.end());
+  return out;
+}
+
 /// Why a beam's adjustment cannot be estimated, or empty.
 std::string unsupported(const ir::Beam& beam, const BeamPart& part) {
   if (beam.adjustment.scope == ir::AdjustmentScope::kJoined) return "scope joined";
@@ -125,7 +148,6 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
     const BeamSystem& system = part.system;
     for (const Place& place : all) {
       if (place.beam != static_cast<int>(i)) continue;
-      const std::vector<double> path = positions(place, system);
       AdjustmentEstimatePoint best;
       best.what = place.what;
       best.beam = ir.beams[i].name;
@@ -134,8 +156,7 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
       best.series_compliance = place.series;
       best.omega = place.omega;
       bool first = true;
-      for (const double s : path) {
-        const auto point = estimator->point({deflection_weights(system, s), place.series, place.omega});
+      for (const auto& [s, point] : path_points(*estimator, place, system)) {
         const ComplianceChange change = estimator->evaluate(point, part.adjusted, /*band=*/true);
         const double estimate = std::max(change.static_change, change.change);
         if (change.band_change > best.band_change) {
@@ -196,8 +217,7 @@ double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAn
   std::vector<ComplianceChangeEstimator::Point> points;
   for (const Place& place : places(model, {}))
     if (place.beam == static_cast<int>(beam))
-      for (const double s : positions(place, part.system))
-        points.push_back(estimator.point({deflection_weights(part.system, s), place.series, place.omega}));
+      for (auto& [s, point] : path_points(estimator, place, part.system)) points.push_back(std::move(point));
   ir::Adjustment adjustment = given.adjustment;
   adjustment.omega_limit_auto = false;
   const auto largest = [&](double omega_limit) {
