@@ -21,7 +21,9 @@ nlohmann::json adjustment_estimate_json(const runtime::AdjustmentEstimate& estim
                       {"static_change", p.static_change},
                       {"dynamic_change", p.dynamic_change},
                       {"changed_share", p.changed_share},
-                      {"estimate", p.estimate}});
+                      {"estimate", p.estimate},
+                      {"band_change", p.band_change},
+                      {"omega_band", p.omega_band}});
   nlohmann::json j = {{"points", points}, {"max", estimate.max}};
   j["where"] = estimate.largest >= 0 ? nlohmann::json(estimate.points[static_cast<std::size_t>(estimate.largest)].what)
                                      : nlohmann::json();

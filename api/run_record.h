@@ -22,7 +22,7 @@ nlohmann::json run_record(const Model& model, const runtime::SimulationRequest& 
 
 /// {"points": [{what, beam, s (m), moving, series_compliance (m/N), omega
 /// (rad/s), compliance (m/N), static_change, dynamic_change, changed_share,
-/// estimate}], "max", "where" (the
+/// estimate, band_change, omega_band (rad/s)}], "max", "where" (the
 /// what of the largest, null without points), "not_estimated": [text],
 /// "omega_limits": [{beam, omega_limit (rad/s), chosen (omega_limit: auto)}]}.
 nlohmann::json adjustment_estimate_json(const runtime::AdjustmentEstimate& estimate);

@@ -49,6 +49,8 @@ py::object estimate_of(const rt::SimulationReport& report) {
     d["dynamic_change"] = p.dynamic_change;
     d["changed_share"] = p.changed_share;
     d["estimate"] = p.estimate;
+    d["band_change"] = p.band_change;
+    d["omega_band"] = p.omega_band;
     points.append(d);
   }
   py::dict out;

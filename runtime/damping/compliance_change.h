@@ -53,6 +53,8 @@ struct ComplianceChange {
   double changed_share = 0.0;  // the changed modes' p_j^2 / k_j over quasi_static (their quasi-static share)
   double static_change = 0.0;  // |H_adj(0) - H(0)| / (c_s + compliance): the static compliance's relative change
   double change = 0.0;         // |H_adj(omega) - H(omega)| / quasi_static: the estimate
+  double band_change = 0.0;    // the largest of static_change and |H_adj(W) - H(W)| / quasi_static(W), 0 < W <= omega
+  double band_omega = 0.0;     // rad/s: the W of band_change (0 when it is static_change)
 };
 
 class ComplianceChangeEstimator {
@@ -80,9 +82,12 @@ class ComplianceChangeEstimator {
   Point point(const CompliancePoint& p) const;
 
   /// The change `adjusted` (the basis' modes adjusted: adjust_modes of
-  /// `original`) makes at the point. @throws std::invalid_argument when the
-  /// sizes do not fit, or a partial basis meets a policy other than cap or mass.
-  ComplianceChange evaluate(const Point& point, const AdjustedModes& adjusted) const;
+  /// `original`) makes at the point; with `band`, band_change too (512
+  /// frequencies over [0, omega], a few hundred times the cost of the rest;
+  /// without, band_change is static_change). @throws std::invalid_argument
+  /// when the sizes do not fit, or a partial basis meets a policy other than
+  /// cap or mass.
+  ComplianceChange evaluate(const Point& point, const AdjustedModes& adjusted, bool band = false) const;
 
   int size() const { return static_cast<int>(M_.rows()); }
   const ModalBasis& basis() const { return basis_; }

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <memory>
 #include <sstream>
+#include <utility>
 #include <stdexcept>
 
 #include "runtime/damping/compliance_change.h"
@@ -14,9 +15,11 @@ namespace mbfe::runtime {
 
 namespace {
 
-// Points on a moving point's path: nodes spread along the beam. The static
-// change varies smoothly between nodes (it is a ratio of two smooth point
-// compliances), so a few dozen places find its largest value to a few per cent.
+// Points on a moving point's path: nodes spread along the beam, and the
+// middle of the element after each. The change is largest inside elements,
+// not at nodes: the modes a cap changes carry the element-scale part of the
+// compliance (on the 30 m bridge, 30 elements, cap at 2000 rad/s: 3.9 % at
+// an element's middle against 3.1 % at the nodes).
 constexpr int kPathSamples = 33;
 
 /// A place (or a path) on one beam and what acts there.
@@ -78,8 +81,31 @@ std::vector<double> positions(const Place& place, const BeamSystem& system) {
   for (int k = 0; k < samples; ++k) {
     const int node = samples == 1 ? 0 : static_cast<int>(std::lround(double(k) * (system.num_nodes - 1) / (samples - 1)));
     path.push_back(std::min(system.length, node * system.element_length));
+    if (node + 1 < system.num_nodes) path.push_back((node + 0.5) * system.element_length);
   }
   return path;
+}
+
+// A place on a moving point's path whose static compliance (with the spring
+// in series) is below this share of the path's largest is one the supports
+// hold: its relative change is round-off over round-off, and it is skipped.
+constexpr double kHeldShare = 1e-9;
+
+/// The place's points on the path (positions), without the ones the supports hold.
+std::vector<std::pair<double, ComplianceChangeEstimator::Point>> path_points(const ComplianceChangeEstimator& estimator,
+                                                                            const Place& place,
+                                                                            const BeamSystem& system) {
+  std::vector<std::pair<double, ComplianceChangeEstimator::Point>> out;
+  double largest = 0.0;
+  for (const double s : positions(place, system)) {
+    out.emplace_back(s, estimator.point({deflection_weights(system, s), place.series, place.omega}));
+    largest = std::max(largest, place.series + out.back().second.compliance);
+  }
+  if (place.moving)
+    out.erase(std::remove_if(out.begin(), out.end(),
+                             [&](const auto& p) { return place.series + p.second.compliance < kHeldShare * largest; }),
+              out.end());
+  return out;
 }
 
 /// Why a beam's adjustment cannot be estimated, or empty.
@@ -122,7 +148,6 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
     const BeamSystem& system = part.system;
     for (const Place& place : all) {
       if (place.beam != static_cast<int>(i)) continue;
-      const std::vector<double> path = positions(place, system);
       AdjustmentEstimatePoint best;
       best.what = place.what;
       best.beam = ir.beams[i].name;
@@ -131,10 +156,13 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
       best.series_compliance = place.series;
       best.omega = place.omega;
       bool first = true;
-      for (const double s : path) {
-        const auto point = estimator->point({deflection_weights(system, s), place.series, place.omega});
-        const ComplianceChange change = estimator->evaluate(point, part.adjusted);
+      for (const auto& [s, point] : path_points(*estimator, place, system)) {
+        const ComplianceChange change = estimator->evaluate(point, part.adjusted, /*band=*/true);
         const double estimate = std::max(change.static_change, change.change);
+        if (change.band_change > best.band_change) {
+          best.band_change = change.band_change;
+          best.omega_band = change.band_omega;
+        }
         if (first || estimate > best.estimate) {
           best.s = s;
           best.compliance = change.compliance;
@@ -189,8 +217,7 @@ double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAn
   std::vector<ComplianceChangeEstimator::Point> points;
   for (const Place& place : places(model, {}))
     if (place.beam == static_cast<int>(beam))
-      for (const double s : positions(place, part.system))
-        points.push_back(estimator.point({deflection_weights(part.system, s), place.series, place.omega}));
+      for (auto& [s, point] : path_points(estimator, place, part.system)) points.push_back(std::move(point));
   ir::Adjustment adjustment = given.adjustment;
   adjustment.omega_limit_auto = false;
   const auto largest = [&](double omega_limit) {

@@ -145,6 +145,8 @@ struct AdjustmentEstimatePoint {
   double dynamic_change = 0.0;       // relative change of the receptance at omega (over the quasi-static compliance there)
   double changed_share = 0.0;        // the changed modes' share of the quasi-static compliance at omega
   double estimate = 0.0;             // max(static_change, dynamic_change)
+  double band_change = 0.0;          // the largest relative change of the receptance over [0, omega] (>= estimate)
+  double omega_band = 0.0;           // rad/s: the frequency of band_change (0: the static change)
 };
 
 /// The estimate of an adjusted run, made before its first step.

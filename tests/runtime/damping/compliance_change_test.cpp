@@ -125,6 +125,36 @@ TEST(ComplianceChange, EveryModeMatchesTheDenseReceptanceForCapAndMass) {
   }
 }
 
+// The band figure: the reported largest value against the dense receptances
+// at the frequency reported, and on a coarser grid of the band none larger
+// (the coarse frequencies are among the estimator's 512, so a larger dense
+// value there would be a wrong change or a wrong largest).
+TEST(ComplianceChange, BandChangeMatchesTheDenseReceptance) {
+  const Beam b = paper_beam();
+  const ComplianceChangeEstimator estimator(b.part.system.M, b.part.system.K, b.part.system.C, b.part.basis,
+                                            b.part.original);
+  const double series = 1.0 / 2.0e6;  // a contact spring of 2e6 N/m in series
+  constexpr int kCoarse = 16;         // dense checks over the band: every 32nd of the estimator's frequencies
+  for (const ir::AdjustmentPolicy policy : {ir::AdjustmentPolicy::kCap, ir::AdjustmentPolicy::kMass}) {
+    SCOPED_TRACE("policy " + std::to_string(static_cast<int>(policy)));
+    const AdjustedModes adjusted = adjust_modes(b.part.original, adjustment(policy));
+    const ComplianceChange got = estimator.evaluate(estimator.point({b.e, series, kForceOmega}), adjusted, /*band=*/true);
+    const auto band = [&](double omega) {
+      return dense_change(b.part, adjusted, b.e, omega) / quasi_static(b.part, b.e, series, omega);
+    };
+    // Under both policies the band's largest lies inside it, above the
+    // static figure (the capped modes' change grows towards the cap).
+    ASSERT_GT(got.band_omega, 0.0);
+    EXPECT_NEAR(got.band_change, band(got.band_omega), kDenseRel * got.band_change);
+    EXPECT_GE(got.band_change, got.change);
+    EXPECT_GE(got.band_change, got.static_change);
+    for (int i = 1; i <= kCoarse; ++i) {
+      const double omega = kForceOmega * i / kCoarse;
+      EXPECT_LE(band(omega), got.band_change * (1.0 + kDenseRel)) << "at " << omega << " rad/s";
+    }
+  }
+}
+
 TEST(ComplianceChange, APartialBasisMatchesTheCompleteOne) {
   const Beam b = paper_beam();
   const ComplianceChangeEstimator complete(b.part.system.M, b.part.system.K, b.part.system.C, b.part.basis,
