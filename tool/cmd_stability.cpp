@@ -42,7 +42,10 @@ uncoupled (the report says so; forward Euler's and AB2's limits, set in that
 middle, are then estimates). For a rigid-only model (bodies, no beams) they are those
 of y' = f(t, y), y = [q; q'], f = [q'; M(q)^-1 (Q - F)], linearised at the
 initial state: a local estimate (the limits change as the motion moves away
-from that state), with no adjusted model. Away from an equilibrium (rigid or
+from that state), with no adjusted model. With closed loops, the ODE that is
+integrated: the independent coordinates and their rates (the dependent ones
+closed by Newton); with spherical or free joints, three rotation increments
+per quaternion (docs/partitioning.md). Away from an equilibrium (rigid or
 coupled models) some eigenvalues have Re > 0 (the motion itself leaves that
 state); they are counted and left out, the limits come from the others. A
 rigid model released away from equilibrium swings about it: it is linearised

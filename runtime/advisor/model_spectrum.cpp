@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <memory>
 #include <vector>
 
 #include "runtime/coupled/coupled_tangents.h"
@@ -10,6 +11,8 @@
 #include "runtime/coupled/tangent_spectrum.h"
 #include "runtime/errors/multibody_errors.h"
 #include "runtime/errors/invalid_input.h"
+#include "runtime/multibody/loop_systems.h"
+#include "runtime/multibody/tangent_linearization.h"
 #include "runtime/simulation/assembled_model.h"
 #include "runtime/simulation/static_start.h"
 
@@ -26,6 +29,40 @@ ModelSpectrum from_linearization(const StateSpectrum& linearized, int coordinate
   out.coordinates = coordinates;
   out.linearized = true;
   return out;
+}
+
+// A model with closed loops, linearised as it is integrated: the partitioned
+// system y = [q; v_u] in its independent coordinates at the consistent
+// initial state, the dependent ones closed by Newton at every evaluation.
+ModelSpectrum loop_spectrum(const AssembledModel& model, Eigen::VectorXd q, Eigen::VectorXd v, bool static_start) {
+  std::unique_ptr<LoopPartitionedSystem> system;
+  try {
+    system = std::make_unique<LoopPartitionedSystem>(*model.kernels(), model.bodies(), model.coordinates());
+  } catch (const std::invalid_argument& e) {
+    throw InvalidInput(model.ir().source_path + ": " + e.what());
+  }
+  system->make_consistent(0.0, q, v);
+  if (static_start) loop_static_state(model.ir(), *system, q, v);
+  const Eigen::VectorXd y0 = system->state_of(0.0, q, v);
+  const std::vector<int> independent = system->partition().independent;
+  const Eigen::MatrixXd a = tangent_jacobian(*system, model.coordinates(), independent, 0.0, y0);
+  return from_linearization(balanced_spectrum(a), static_cast<int>(independent.size()));
+}
+
+// A tree with spherical or free joints: y = [q; v] in the three rotation
+// increments of each quaternion (not its four components).
+ModelSpectrum quaternion_spectrum(const AssembledModel& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                  bool static_start) {
+  const RigidCoordinates& c = model.coordinates();
+  RigidSystem system(*model.kernels(), model.bodies(), c);
+  Eigen::VectorXd y0(c.nq + c.nv);
+  y0 << q, v;
+  normalize_quaternions(c, y0.data());
+  system.impose_motion(0.0, y0);
+  if (static_start) quaternion_static_state(model.ir(), system, y0);
+  std::vector<int> all(c.nv);
+  for (int i = 0; i < c.nv; ++i) all[i] = i;
+  return from_linearization(balanced_spectrum(tangent_jacobian(system, c, all, 0.0, y0)), c.nv);
 }
 
 }  // namespace
@@ -46,12 +83,8 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
         return out;
       }
       case ModelKind::kRigid: {
-        if (!model.ir().constraints.empty())
-          throw InvalidInput(model.ir().source_path + ": the linearisation of a model with closed loops "
-                             "(constraints:) is not available yet; mbfe simulate runs it");
-        if (model.coordinates().has_quaternions())
-          throw InvalidInput(model.ir().source_path + ": the linearisation of a model with spherical or free joints "
-                             "(quaternions) is not available yet; mbfe simulate runs it");
+        if (!model.ir().constraints.empty()) return loop_spectrum(model, q0, qd0, static_start);
+        if (model.coordinates().has_quaternions()) return quaternion_spectrum(model, q0, qd0, static_start);
         RigidSystem system(*model.kernels(), model.bodies(), model.coordinates());
         const int n = system.num_coordinates();
         Eigen::VectorXd y0(2 * n);

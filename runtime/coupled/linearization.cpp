@@ -42,7 +42,10 @@ StateSpectrum dense_spectrum(const Eigen::MatrixXd& a) {
 
 StateSpectrum linearized_spectrum(OdeSystem& system, double t, const Eigen::VectorXd& y,
                                   const LinearizationOptions& options) {
-  Eigen::MatrixXd a = rhs_jacobian(system, t, y, options);
+  return balanced_spectrum(rhs_jacobian(system, t, y, options));
+}
+
+StateSpectrum balanced_spectrum(Eigen::MatrixXd a) {
   // Balance [[0, I], [A21, A22]] by the similarity diag(I, sigma I) (rates
   // measured in units of sigma): [[0, sigma I], [A21 / sigma, A22]], with
   // sigma = sqrt(max |A21|) ~ the fastest stiffness frequency. The eigenvalues

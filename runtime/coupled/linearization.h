@@ -48,6 +48,12 @@ Eigen::MatrixXd rhs_jacobian(OdeSystem& system, double t, const Eigen::VectorXd&
 /// are set to zero.
 StateSpectrum dense_spectrum(const Eigen::MatrixXd& a);
 
+/// The eigenvalues of a state matrix A = [[A11, A12], [A21, A22]] (2 n x 2 n,
+/// positions then rates), balanced first by the similarity diag(I, sigma I),
+/// sigma = sqrt(max |A21|) (rates measured in units of sigma). Same
+/// eigenvalues, less rounding in the QR iteration.
+StateSpectrum balanced_spectrum(Eigen::MatrixXd a);
+
 /// The spectrum of a second-order `system` linearised at (t, y): A from
 /// rhs_jacobian, balanced (rates rescaled by sqrt(max |da/dz|)) before the
 /// eigenvalues. @throws what system.rhs throws.

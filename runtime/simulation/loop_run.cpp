@@ -1,6 +1,7 @@
 // A model of bodies with closed loops: the partitioned formulation (default)
 // or the augmented one (--formulation augmented), from a consistent initial
-// state; rows t, q, v, loop_residual (docs/partitioning.md, "Closed loops").
+// state (or the equilibrium on the loops, for a static start); rows t, q, v,
+// loop_residual (docs/partitioning.md, "Closed loops").
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "runtime/errors/multibody_errors.h"
 #include "runtime/multibody/loop_systems.h"
 #include "runtime/simulation/model_run.h"
+#include "runtime/simulation/static_start.h"
 
 namespace mbfe::runtime::detail {
 
@@ -31,15 +33,23 @@ class LoopRun final : public ModelRun {
     Eigen::VectorXd q0, v0;
     model.initial_coordinates(q0, v0);
     Eigen::VectorXd q = q0, v = v0;
+    const bool static_start = request.static_start.value_or(model.ir().initial.static_start);
     try {
       system_->make_consistent(0.0, q, v);
+      if (static_start) {
+        // Found by the partitioned system whatever the formulation run.
+        LoopPartitionedSystem partitioned(*model.kernels(), model.bodies(), c);
+        loop_static_state(model.ir(), partitioned, q, v);
+        v0.setZero();  // the velocities are the equilibrium's: nothing to announce
+      }
       y0_ = system_->state_of(0.0, q, v);
     } catch (const ContactError& e) {
       throw InvalidInput(model.ir().source_path + ": inconsistent initial state: " + e.what());
     }
     // Velocities left at zero (not given) are completed from J v = 0 without
     // a word; a velocity given and changed is announced.
-    const std::string moved = moves(q0, q, c.position_columns, c.position_units, false);
+    // A static start moves the positions on purpose: nothing to announce.
+    const std::string moved = static_start ? "" : moves(q0, q, c.position_columns, c.position_units, false);
     const std::string moved_rates = moves(v0, v, c.velocity_columns, c.velocity_units, true);
     if (!moved.empty() || !moved_rates.empty()) {
       std::string text = "the initial state does not close the loops and was projected onto them:";
@@ -122,9 +132,6 @@ class LoopRun final : public ModelRun {
 }  // namespace
 
 std::unique_ptr<ModelRun> make_loop_run(const AssembledModel& model, const SimulationRequest& request) {
-  if (request.static_start.value_or(model.ir().initial.static_start))
-    throw InvalidRequest("static_start", "static is not available for a model with closed loops yet ('" +
-                                             model.ir().name + "'); start from `initial:` as written");
   return std::make_unique<LoopRun>(model, request);
 }
 

@@ -32,10 +32,8 @@ class RigidRun final : public ModelRun {
     }
     system_.impose_motion(0.0, y0_);
     if (request.static_start.value_or(model.ir().initial.static_start)) {
-      if (c.nq != c.nv)
-        throw InvalidInput(model.ir().source_path + ": a static start is not available for a model with spherical or "
-                           "free joints (quaternions) yet; start from `initial:` as written");
-      rigid_static_state(model.ir(), system_, y0_);
+      if (c.has_quaternions()) quaternion_static_state(model.ir(), system_, y0_);
+      else rigid_static_state(model.ir(), system_, y0_);
     }
     layout_.columns.push_back("t");
     layout_.units.push_back("s");

@@ -4,6 +4,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -11,6 +12,7 @@
 #include "ir/model_error.h"
 #include "runtime/coupled/coupled_implicit_system.h"
 #include "runtime/coupled/slider_spring_force.h"
+#include "runtime/errors/multibody_errors.h"
 
 namespace mbfe::runtime {
 
@@ -52,6 +54,9 @@ constexpr double kDenseStallResidualReduction = 1e-5;
 // column's largest entry to about 1; a mechanism, an exactly dependent set of
 // columns, stays one under any such scaling.
 constexpr int kEquilibrationSweeps = 4;
+// A Newton step is halved at most this often (to 1e-6 of itself) before the
+// failure to evaluate the residual there is the answer.
+constexpr int kMaxStepHalvings = 20;
 
 /// The mechanism found at the start: `coordinate` indexes the unknowns.
 class MechanismError : public std::runtime_error {
@@ -134,9 +139,19 @@ StaticSolution solve_static(const StaticResidualFn& residual, const Eigen::Vecto
       }
       throw std::runtime_error(os.str());
     }
-    const Eigen::VectorXd dx = qr.solve(r.cwiseQuotient(d_row)).cwiseQuotient(d_col);
+    Eigen::VectorXd dx = qr.solve(r.cwiseQuotient(d_row)).cwiseQuotient(d_col);
+    // A step into positions where the model has no state (a linkage the
+    // loops cannot close there) is halved until it lands on one.
+    for (int halving = 0;; ++halving) {
+      try {
+        residual(out.x - dx, r);
+        break;
+      } catch (const ContactError&) {
+        if (halving == kMaxStepHalvings) throw;
+        dx *= 0.5;
+      }
+    }
     out.x -= dx;
-    residual(out.x, r);
     if (!r.allFinite()) break;
     const double step = dx.cwiseAbs().maxCoeff(), size = 1.0 + out.x.cwiseAbs().maxCoeff();
     const bool stalled = step <= kDenseStallTolerance * size && step > 0.5 * last_step &&
@@ -329,7 +344,78 @@ void seat_on_running_surfaces(const ir::Model& model, CoupledDynamics& dyn, Eige
   throw ir::ModelError(model.source_path, model.initial.loc, "static start of model '" + model.name + "': " + what);
 }
 
+// Newton on x, q = q0 (+) x along the velocity directions `moved` (indices
+// into v): residual entry k is y'[nq + rate_entry[k]] of `system` at
+// [q; w], w = y's velocity part (at rest). y's q becomes the solution.
+// `closed`, when given, returns the positions the system evaluated y' at (a
+// loop system closes q along its dependent directions): the next iterate
+// starts from them, moved along `moved` by the change of x, so that Newton's
+// closure starts near the loops however far Newton's steps go. Along plain
+// coordinates that is the same chart (their `moved` entries are q0 + x).
+using ClosedPositionsFn = std::function<void(const Eigen::VectorXd& state, Eigen::VectorXd& q)>;
+void tangent_static_state(const ir::Model& model, OdeSystem& system, const RigidCoordinates& c,
+                          const std::vector<int>& moved, const std::vector<int>& rate_entry, Eigen::VectorXd& y,
+                          const ClosedPositionsFn& closed = nullptr) {
+  Eigen::VectorXd start_q = y.head(c.nq);
+  Eigen::VectorXd start_x = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(moved.size()));
+  std::vector<std::string> names;
+  for (int i : moved) names.push_back(c.rate_of[i] >= 0 ? c.position_columns[c.rate_of[i]] : c.velocity_columns[i]);
+  Eigen::VectorXd state = y, ydot, dv = Eigen::VectorXd::Zero(c.nv), q_closed;
+  auto place = [&](const Eigen::VectorXd& x) {
+    state.head(c.nq) = start_q;
+    for (std::size_t k = 0; k < moved.size(); ++k)
+      dv[moved[k]] = x[static_cast<Eigen::Index>(k)] - start_x[static_cast<Eigen::Index>(k)];
+    displace(c, state.data(), dv);
+  };
+  const StaticResidualFn residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    place(x);
+    system.rhs(0.0, state, ydot);
+    if (closed) {
+      closed(state, q_closed);
+      start_q = q_closed;
+      start_x = x;
+    }
+    r.resize(x.size());
+    for (std::size_t k = 0; k < moved.size(); ++k) r[static_cast<Eigen::Index>(k)] = ydot[c.nq + rate_entry[k]];
+  };
+  try {
+    const StaticSolution solution =
+        solve_static(residual, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(moved.size())), names);
+    place(solution.x);
+    normalize_quaternions(c, state.data());
+    y.head(c.nq) = state.head(c.nq);
+  } catch (const std::runtime_error& e) {
+    static_start_failed(model, e, names);
+  }
+}
+
 }  // namespace
+
+void quaternion_static_state(const ir::Model& model, RigidSystem& system, Eigen::VectorXd& y) {
+  const RigidCoordinates& c = system.coordinates();
+  y.tail(c.nv).setZero();
+  normalize_quaternions(c, y.data());
+  system.impose_motion(0.0, y);
+  const std::vector<int> moved = free_indices(c.nv, system.driven());
+  tangent_static_state(model, system, c, moved, moved, y);
+}
+
+void loop_static_state(const ir::Model& model, LoopPartitionedSystem& system, Eigen::VectorXd& q,
+                       Eigen::VectorXd& v) {
+  const RigidCoordinates& c = system.closure().coordinates();
+  v.setZero(c.nv);
+  Eigen::VectorXd y = system.state_of(0.0, q, v);
+  const std::vector<int> independent = system.partition().independent;
+  std::vector<int> entries(independent.size());
+  for (std::size_t k = 0; k < entries.size(); ++k) entries[k] = static_cast<int>(k);
+  Eigen::VectorXd v_closed;
+  tangent_static_state(model, system, c, independent, entries, y,
+                       [&](const Eigen::VectorXd& state, Eigen::VectorXd& q_closed) {
+                         system.full_state(0.0, state, q_closed, v_closed);
+                       });
+  system.full_state(0.0, y, q, v);  // closed
+  v.setZero();
+}
 
 void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::VectorXd& q, Eigen::VectorXd& qd) {
   const int n = dyn.n();

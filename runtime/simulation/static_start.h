@@ -20,6 +20,7 @@
 
 #include "ir/model.h"
 #include "runtime/coupled/coupled_dynamics.h"
+#include "runtime/multibody/loop_systems.h"
 #include "runtime/multibody/rigid_system.h"
 
 namespace mbfe::runtime {
@@ -39,7 +40,9 @@ struct StaticSolution {
 ///         null direction), "Newton lost hold of '<name>' ..." when the
 ///         Jacobian turns singular only after the first iteration (a contact
 ///         the steps carried away: a structure far softer than its loads),
-///         or "... did not converge ..." after 50 iterations. Converged when
+///         or "... did not converge ..." after 50 iterations. A step to
+///         where `residual` throws ContactError (loops that cannot close
+///         there) is halved until it does not (at most 20 times). Converged when
 ///         the update is 1e-12 of the coordinates, or stalls below 1e-9 of
 ///         them (its round-off floor) once the residual has fallen by 1e-5.
 StaticSolution solve_static(const StaticResidualFn& residual, const Eigen::VectorXd& x0,
@@ -74,6 +77,22 @@ void coupled_static_start(const ir::Model& model, const std::shared_ptr<CoupledD
 /// A rigid model's static start on y = [q; q'] (q the starting guess).
 /// @throws ir::ModelError at `model.initial.loc` when there is none.
 void rigid_static_state(const ir::Model& model, RigidSystem& system, Eigen::VectorXd& y);
+
+/// A rigid model's static start when its positions are not a vector space of
+/// their own: Newton on the increments along the free velocity directions
+/// (q0 (+) dx: three rotation increments per quaternion), the residual their
+/// accelerations at rest (driven joints moving as their motion says).
+/// y = [q; v] (q the starting guess). @throws ir::ModelError at
+/// `model.initial.loc` when there is none.
+void quaternion_static_state(const ir::Model& model, RigidSystem& system, Eigen::VectorXd& y);
+
+/// A model with closed loops: the equilibrium on the constraint manifold, by
+/// Newton on the increments of the independent coordinates of the partition
+/// at q, the loops closed by `system` at every iterate (docs/partitioning.md,
+/// "Closed loops"). q must close the loops on entry; it becomes the
+/// equilibrium (closed), v zero. @throws ir::ModelError at
+/// `model.initial.loc` when there is none.
+void loop_static_state(const ir::Model& model, LoopPartitionedSystem& system, Eigen::VectorXd& q, Eigen::VectorXd& v);
 
 /// A stable static equilibrium of a rigid model near y = [q; q'] (the
 /// minimum of its potential the motion from y, damped, settles into; a

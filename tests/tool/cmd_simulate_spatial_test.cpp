@@ -1,6 +1,6 @@
 // `mbfe simulate` and `mbfe stability` on spatial models and closed loops from
-// the command line: an implicit integrator keeps the loops closed, and what
-// is not available yet is refused with a message (exit 2).
+// the command line: an implicit integrator keeps the loops closed, and a
+// formulation asked of a tree is refused with a message (exit 2).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -33,21 +33,11 @@ TEST(SimulateSpatial, ImplicitIntegratorsKeepTheLoopsClosed) {
   }
 }
 
-TEST(SimulateSpatial, WhatIsNotAvailableYetIsRefused) {
-  const test::TempDir dir;
-  const std::string tumbler = (dir / "tumbler.yaml").string();
-  std::ofstream(tumbler) << "model: tumbler\ndimension: 3\ngravity: [0, 0, 0]\nbodies:\n"
-                            "  - {name: box, parent: ground, joint: {type: free}, mass: 2, inertia: [1, 1, 1, 0, 0, 0]}\n";
+TEST(SimulateSpatial, AFormulationForATreeIsRefused) {
   struct Case {
     std::string command, message;
   };
   const Case cases[] = {
-      {"stability models/four_bar.yaml", "the linearisation of a model with closed loops (constraints:) is not available yet"},
-      {"stability " + tumbler, "the linearisation of a model with spherical or free joints (quaternions) is not available yet"},
-      {"simulate models/four_bar.yaml --start static --out /dev/null",
-       "--start static is not available for a model with closed loops yet ('four_bar')"},
-      {"simulate " + tumbler + " --start static --out /dev/null",
-       "a static start is not available for a model with spherical or free joints (quaternions) yet"},
       {"simulate models/double_pendulum_3d.yaml --formulation augmented --out /dev/null",
        "--formulation applies to coupled models (bodies, beams and contacts) and models with closed loops"},
   };

@@ -94,5 +94,19 @@ TEST(CmdStabilityRigid, DoublePendulumAndTextReport) {
   EXPECT_TRUE(j.at("adjusted").is_null());
 }
 
+TEST(CmdStabilityRigid, FreeBodyWithoutGravityReportsZeroModesNotGrowth) {
+  // Nothing pulls a free body back: twelve zero eigenvalues (six defective
+  // pairs), neither growth nor a mode that limits a step.
+  TempDir dir;
+  const fs::path path = dir / "tumbler.yaml";
+  spit(path, "model: tumbler\ndimension: 3\ngravity: [0, 0, 0]\nbodies:\n"
+             "  - {name: box, parent: ground, joint: {type: free}, mass: 2, inertia: [1, 2, 2.5, 0, 0, 0]}\n");
+  const RunResult r = run_mbfe(dir, "stability " + quote(path.string()));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("rigid, 6 DOF, 12 state eigenvalues"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("Re > 0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("fastest eigenvalue 0 1/s"), std::string::npos) << r.out;
+}
+
 }  // namespace
 }  // namespace mbfe::test
