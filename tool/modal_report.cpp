@@ -149,6 +149,8 @@ const char* policy_name(ir::AdjustmentPolicy p) {
       return "keep_slow";
     case ir::AdjustmentPolicy::kMass:
       return "mass";
+    case ir::AdjustmentPolicy::kTruncate:
+      return "truncate";
   }
   return "?";
 }

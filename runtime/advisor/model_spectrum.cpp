@@ -32,6 +32,7 @@ ModelSpectrum from_linearization(const StateSpectrum& linearized, int coordinate
 
 ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
   adjusted = model.resolve_adjusted(adjusted);
+  model.refuse_truncation(adjusted, "the stability advisor linearises the nodal model");
   // Linearised where a run starts: the static equilibrium when the model asks for it.
   const bool static_start = model.ir().initial.static_start;
   Eigen::VectorXd q0, qd0;

@@ -27,7 +27,8 @@ BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamA
   mo.num_modes = part.dense ? 0 : std::min(options.sparse_modes, n - 1);
   const ir::Adjustment& adj = beam.adjustment;
   if (!part.dense && options.modes_kept_by_cap && adj.active() &&
-      (adj.policy == ir::AdjustmentPolicy::kCap || adj.policy == ir::AdjustmentPolicy::kMass) &&
+      (adj.policy == ir::AdjustmentPolicy::kCap || adj.policy == ir::AdjustmentPolicy::kMass ||
+       adj.policy == ir::AdjustmentPolicy::kTruncate) &&
       adj.scope == ir::AdjustmentScope::kBeam && adj.omega_limit > 0.0) {
     // A kept mode has |r_fast| <= omega_limit, so omega <= omega_limit.
     ModalOptions sliced = mo;
