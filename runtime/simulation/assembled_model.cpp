@@ -137,7 +137,7 @@ void AssembledModel::refuse_truncation(bool adjusted, const std::string& what) c
     throw InvalidInput(model_.source_path + ":" + std::to_string(a.loc.line) + ":" + std::to_string(a.loc.column) +
                        ": beam '" + b.name + "' has policy truncate, which only an explicit integrator runs, in a "
                        "coupled model's split coordinates (no pin or slider_pin contacts, no joined structures); " +
-                       what + " (or run the original model: --adjust off)");
+                       what + " (`mbfe simulate --adjust off` runs the original model)");
   }
 }
 
