@@ -13,7 +13,7 @@ command -v gnuplot >/dev/null || { echo "truncation_picture: gnuplot is missing 
 data=$(mktemp)
 trap 'rm -f "$data"' EXIT
 # method (0 adjusted, 1 truncated, 2 original), worst error (% of the mean force),
-# CPU (s, user + system; the mean of two runs, but on the ten-span 100 Hz: its one run, slicing its
+# CPU (s, user + system; the mean of the runs (three on the ten-span, two on the two-span), but on the ten-span 100 Hz: its one run, slicing its
 # modes, and 200 Hz: its second run, the first having sliced them), label
 cat > "$data" <<'DATA'
 # two-span: adjusted (cap 1500 rad/s, RK4 1e-3 s)
@@ -29,10 +29,10 @@ cat > "$data" <<'DATA'
 
 
 # ten-span
-0 0.301 41.8 "cap"
+0 0.301 37.9 "cap"
 1 3.147 17.6 "100 Hz (modes sliced)"
 1 0.212 19.2 "200 Hz"
-1 0.216 21.4 "239 Hz"
+1 0.216 20.6 "239 Hz"
 DATA
 gnuplot <<GP
 set terminal pngcairo size 1100,460 font "sans,10"
