@@ -147,7 +147,7 @@ TEST(TruncatedBeam, AboveEveryModeItIsTheCapThatChangesNothing) {
   cap_model.simulate(request, cap);
   ASSERT_EQ(truncated.q.size(), cap.q.size());
   // Another summation order (Phi eta against s + Phi (eta - zeta)), on
-  // contacts and droppers that switch on those sums: 9e-15 measured.
+  // contacts and droppers that switch on those sums: 5e-16 measured.
   constexpr double kSameMotionTol = 1e-9;
   double worst = 0.0;
   for (std::size_t r = 0; r < cap.q.size(); ++r) {
