@@ -268,9 +268,9 @@ Adjustment ModelParser::parse_adjustment(const MapView& view) {
   if (policy != nullptr) {
     constexpr AdjustmentPolicy kPolicies[] = {
         AdjustmentPolicy::kCap, AdjustmentPolicy::kPaperEq25, AdjustmentPolicy::kKeepSlow,
-        AdjustmentPolicy::kNone, AdjustmentPolicy::kMass};
+        AdjustmentPolicy::kNone, AdjustmentPolicy::kMass, AdjustmentPolicy::kTruncate};
     adjustment.policy =
-        kPolicies[view.choice(*policy, {"cap", "paper_eq25", "keep_slow", "none", "mass"})];
+        kPolicies[view.choice(*policy, {"cap", "paper_eq25", "keep_slow", "none", "mass", "truncate"})];
   }
   if (const Field* scope = view.find("scope")) {
     adjustment.scope = view.choice(*scope, {"beam", "joined"}) == 0 ? AdjustmentScope::kBeam : AdjustmentScope::kJoined;

@@ -167,7 +167,10 @@ struct BeamPointMass {
 /// kMass: the modes kCap changes keep their stiffness and get the modal mass
 /// (and damping) that puts their roots where kCap puts them, which keeps the
 /// static compliance exact (docs/damping-adjustment.md).
-enum class AdjustmentPolicy { kNone, kCap, kPaperEq25, kKeepSlow, kMass };
+/// kTruncate: modal truncation; the modes with omega_j > omega_limit are
+/// removed and the beam moves in its modes below omega_limit alone
+/// (docs/damping-adjustment.md, "Policy truncate").
+enum class AdjustmentPolicy { kNone, kCap, kPaperEq25, kKeepSlow, kMass, kTruncate };
 
 /// What the modes of an adjustment are the modes of: the beam alone, or the
 /// structure of the beams joined to it by links, taut links included

@@ -109,7 +109,10 @@ void print_adjusted_text(std::ostream& out, const ir::Beam& b, const runtime::Be
   const int dof = static_cast<int>(r.system.M.rows());
   out << "adjusted (policy " << policy_name(b.adjustment.policy) << ", omega_limit " << b.adjustment.omega_limit
       << " rad/s, margin " << b.adjustment.margin << ", zeta_min " << b.adjustment.zeta_min << "): "
-      << r.adjusted.adjusted << " modes adjusted, " << r.adjusted.floored << " raised to zeta_min\n";
+      << r.adjusted.adjusted
+      << (b.adjustment.policy == ir::AdjustmentPolicy::kTruncate ? " modes removed (the right half lists the kept ones), "
+                                                                 : " modes adjusted, ")
+      << r.adjusted.floored << " raised to zeta_min\n";
   if (b.adjustment.policy == ir::AdjustmentPolicy::kMass && r.adjusted.adjusted > 0) {
     double largest = 1.0;
     for (const runtime::ModalDynamics& m : r.adjusted.modes) largest = std::max(largest, m.m);
@@ -149,6 +152,8 @@ const char* policy_name(ir::AdjustmentPolicy p) {
       return "keep_slow";
     case ir::AdjustmentPolicy::kMass:
       return "mass";
+    case ir::AdjustmentPolicy::kTruncate:
+      return "truncate";
   }
   return "?";
 }

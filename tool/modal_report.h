@@ -32,7 +32,7 @@ int spectrum_table_width();
 std::string spectrum_summary(const runtime::StateSpectrum& spectrum, int dof,
                              const std::string& partial = "lowest modes only");
 
-/// "cap", "paper_eq25", "keep_slow", "none", "mass".
+/// "cap", "paper_eq25", "keep_slow", "none", "mass", "truncate".
 const char* policy_name(ir::AdjustmentPolicy policy);
 
 /// One beam of `mbfe modal --json`: name, dof, modal_path, natural

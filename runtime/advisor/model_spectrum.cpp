@@ -69,6 +69,7 @@ ModelSpectrum quaternion_spectrum(const AssembledModel& model, const Eigen::Vect
 
 ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
   adjusted = model.resolve_adjusted(adjusted);
+  model.refuse_truncation(adjusted, "the stability advisor linearises the nodal model");
   // Linearised where a run starts: the static equilibrium when the model asks for it.
   const bool static_start = model.ir().initial.static_start;
   Eigen::VectorXd q0, qd0;

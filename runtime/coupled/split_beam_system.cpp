@@ -67,6 +67,15 @@ Eigen::VectorXd SplitBeamSystem::initial_state(double, const Eigen::VectorXd& q,
   y.segment(n, ne) = e_;
   dyn_->split_from_nodal(qd.tail(n - nb), ed_);
   y.tail(ne) = ed_;
+  // A truncated beam has no uniform part: its q is Phi_L eta, the projection
+  // eta = Phi_L^T M q of the nodal state on its kept modes.
+  for (int k : dyn_->split_structures()) {
+    const LowRankStructure& st = *dyn_->model().structures()[k];
+    if (!st.truncated()) continue;
+    const LowRankStructure::Range& r = st.ranges().front();
+    y.segment(nb + r.offset, r.size).setZero();
+    y.segment(n + ne + nb + r.offset, r.size).setZero();
+  }
   return y;
 }
 

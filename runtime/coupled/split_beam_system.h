@@ -26,7 +26,9 @@ class SplitBeamSystem : public CoupledSystem {
   void rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) override;
   std::string name(int i) const override;
 
-  /// y from nodal coordinates: s = q_c and eta = zeta = Phi_L^T M q_c per split beam.
+  /// y from nodal coordinates: s = q_c and eta = zeta = Phi_L^T M q_c per split
+  /// beam; for a truncated beam (policy truncate) s = 0, zeta = 0 and
+  /// eta = Phi_L^T M q_c, the projection of q_c on its kept modes.
   Eigen::VectorXd initial_state(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override;
   /// Nodal coordinates: every DOF of a split beam costs a pass over its Phi_L.
   void full_state(double t, const Eigen::VectorXd& y, Eigen::VectorXd& q, Eigen::VectorXd& qd) override;

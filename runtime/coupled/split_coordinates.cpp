@@ -48,7 +48,11 @@ void CoupledDynamics::split_from_nodal(const Eigen::Ref<const Eigen::VectorXd>& 
     const int o = split_offset_[k];
     const LowRankStructure::Range& r = st.ranges().front();
     e.segment(o, m).noalias() = st.phi().transpose() * (st.M() * qc.segment(r.offset, r.size));
-    e.segment(o + m, m) = e.segment(o, m);
+    // A truncated beam is Phi_L eta alone: s = 0 and zeta = 0 (SplitBeamSystem).
+    if (st.truncated())
+      e.segment(o + m, m).setZero();
+    else
+      e.segment(o + m, m) = e.segment(o, m);
   }
 }
 
@@ -62,17 +66,24 @@ void CoupledDynamics::split_accelerations(int k, const Eigen::Ref<const Eigen::V
   const double mu_m = st.mass().mu, mu_c = st.damping().mu, mu_k = st.stiffness().mu;
   // s'' = B^-1 (P + f) / mu_M - (mu_C s' + mu_K s) / mu_M, and the kept
   // modes' load g = Phi_L^T (P + f) from the rows of Phi_L where f is not
-  // zero (contacts, links, point loads).
-  a = st.base_load_response() - (mu_c / mu_m) * sd - (mu_k / mu_m) * s;
+  // zero (contacts, links, point loads). A truncated beam has no s (it stays
+  // 0) and no zeta: no sparse solve, only the kept modes.
+  const bool truncated = st.truncated();
+  if (truncated)
+    a.setZero();
+  else
+    a = st.base_load_response() - (mu_c / mu_m) * sd - (mu_k / mu_m) * s;
   // Each structure's own scratch: the two wires of a catenary differ in size.
   LowRankStructure::Workspace& ws = d.structures[static_cast<std::size_t>(split_structure_[k])];
   Eigen::VectorXd& g = ws.modal_g;
   g = st.modal_loads();
   const Eigen::Map<const Eigen::VectorXd> loads(f, f != nullptr ? s.size() : 0);
   if (f != nullptr && !loads.isZero(0.0)) {
-    ws.r = loads;
-    st.solve_base(ws.r, ws.base_solve, ws);
-    a += ws.base_solve / mu_m;
+    if (!truncated) {
+      ws.r = loads;
+      st.solve_base(ws.r, ws.base_solve, ws);
+      a += ws.base_solve / mu_m;
+    }
     for (Eigen::Index i = 0; i < loads.size(); ++i)
       if (loads[i] != 0.0) {
         const double* row = st.phi().data() + i * m;  // row-major: row i is contiguous
@@ -86,8 +97,11 @@ void CoupledDynamics::split_accelerations(int k, const Eigen::Ref<const Eigen::V
                                 (mu_k * b + st.stiffness().d.array()) * eta.array()) /
                                (mu_m * b + st.mass().d.array()))
                                   .matrix();
-  d.split_acc.segment(o + m, m) =
-      (g.array() / (mu_m * b) - (mu_c / mu_m) * zetad.array() - (mu_k / mu_m) * zeta.array()).matrix();
+  if (truncated)
+    d.split_acc.segment(o + m, m).setZero();
+  else
+    d.split_acc.segment(o + m, m) =
+        (g.array() / (mu_m * b) - (mu_c / mu_m) * zetad.array() - (mu_k / mu_m) * zeta.array()).matrix();
 }
 
 }  // namespace mbfe::runtime

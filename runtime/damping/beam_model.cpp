@@ -12,6 +12,21 @@
 
 namespace mbfe::runtime {
 
+namespace {
+
+// The modes of the adjusted beam: part.adjusted.modes, less the removed ones
+// under policy truncate (the beam moves in its kept modes alone), so its
+// adjusted spectrum is that of the beam that runs.
+std::vector<ModalDynamics> adjusted_model_modes(const BeamPart& part) {
+  if (part.adjusted.policy != ir::AdjustmentPolicy::kTruncate) return part.adjusted.modes;
+  std::vector<ModalDynamics> kept;
+  for (std::size_t j = 0; j < part.adjusted.modes.size(); ++j)
+    if (part.adjusted.change[j] != ModeChange::kAdjusted) kept.push_back(part.adjusted.modes[j]);
+  return kept;
+}
+
+}  // namespace
+
 BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamAnalysisOptions& options) {
   BeamPart part;
   part.system = assemble_beam(beam, gravity);
@@ -27,7 +42,8 @@ BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamA
   mo.num_modes = part.dense ? 0 : std::min(options.sparse_modes, n - 1);
   const ir::Adjustment& adj = beam.adjustment;
   if (!part.dense && options.modes_kept_by_cap && adj.active() &&
-      (adj.policy == ir::AdjustmentPolicy::kCap || adj.policy == ir::AdjustmentPolicy::kMass) &&
+      (adj.policy == ir::AdjustmentPolicy::kCap || adj.policy == ir::AdjustmentPolicy::kMass ||
+       adj.policy == ir::AdjustmentPolicy::kTruncate) &&
       adj.scope == ir::AdjustmentScope::kBeam && adj.omega_limit > 0.0) {
     // A kept mode has |r_fast| <= omega_limit, so omega <= omega_limit.
     ModalOptions sliced = mo;
@@ -70,7 +86,7 @@ BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamA
     throw std::invalid_argument("beam '" + beam.name + "': " + e.what());
   }
   part.original_spectrum = state_spectrum(part.original, part.basis.complete);
-  part.adjusted_spectrum = state_spectrum(part.adjusted.modes, part.basis.complete);
+  part.adjusted_spectrum = state_spectrum(adjusted_model_modes(part), part.basis.complete);
   return part;
 }
 
@@ -116,7 +132,8 @@ BeamModel analyse_beams(const ir::Model& model, const BeamAnalysisOptions& optio
     out.any_adjustment = out.any_adjustment || part.has_adjustment;
     complete = complete && part.basis.complete;
     all_original.insert(all_original.end(), part.original.begin(), part.original.end());
-    all_adjusted.insert(all_adjusted.end(), part.adjusted.modes.begin(), part.adjusted.modes.end());
+    const std::vector<ModalDynamics> adjusted = adjusted_model_modes(part);
+    all_adjusted.insert(all_adjusted.end(), adjusted.begin(), adjusted.end());
     out.beams.push_back(std::move(part));
   }
   out.original = state_spectrum(all_original, complete);

@@ -36,7 +36,10 @@ AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const ir::Ad
   out.k_star = wl * wl;
   out.c_star = (2.0 + a.margin) * wl;
   out.r_cap = a.policy == ir::AdjustmentPolicy::kPaperEq25 ? 0.0 : r_cap;
-  out.uniform = a.policy == ir::AdjustmentPolicy::kCap;
+  // Truncation removes its modes; they are given the cap's values only so
+  // that the low-rank parts (adjusted_parts) have a uniform tail to build.
+  const bool truncate = a.policy == ir::AdjustmentPolicy::kTruncate;
+  out.uniform = a.policy == ir::AdjustmentPolicy::kCap || truncate;
 
   for (std::size_t j = 0; j < modes.size(); ++j) {
     ModalDynamics& m = out.modes[j];
@@ -44,6 +47,13 @@ AdjustedModes adjust_modes(const std::vector<ModalDynamics>& modes, const ir::Ad
     if (a.policy == ir::AdjustmentPolicy::kPaperEq25) {
       adjust = m.omega > wl;
       if (adjust) m.c = (2.0 + a.margin) * m.omega;
+    } else if (truncate) {
+      // Selected by omega_j, the frequency a truncation is stated in.
+      adjust = m.omega > wl;
+      if (adjust) {
+        m.k = out.k_star;
+        m.c = out.c_star;
+      }
     } else {
       adjust = fastest_root(m) > wl;
       if (adjust) {

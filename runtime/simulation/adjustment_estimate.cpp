@@ -111,6 +111,8 @@ std::vector<std::pair<double, ComplianceChangeEstimator::Point>> path_points(con
 /// Why a beam's adjustment cannot be estimated, or empty.
 std::string unsupported(const ir::Beam& beam, const BeamPart& part) {
   if (beam.adjustment.scope == ir::AdjustmentScope::kJoined) return "scope joined";
+  // The estimate is of a change of the modes' dynamics; a truncation removes them.
+  if (beam.adjustment.policy == ir::AdjustmentPolicy::kTruncate) return "policy truncate";
   if (!part.basis.complete) {
     const auto policy = part.adjusted.policy;
     if (policy != ir::AdjustmentPolicy::kCap && policy != ir::AdjustmentPolicy::kMass)

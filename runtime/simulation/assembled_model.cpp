@@ -129,6 +129,18 @@ bool AssembledModel::resolve_adjusted(std::optional<bool> asked) const {
   return adjusted;
 }
 
+void AssembledModel::refuse_truncation(bool adjusted, const std::string& what) const {
+  if (!adjusted) return;
+  for (const ir::Beam& b : model_.beams) {
+    const ir::Adjustment& a = b.adjustment;
+    if (!a.active() || a.policy != ir::AdjustmentPolicy::kTruncate) continue;
+    throw InvalidInput(model_.source_path + ":" + std::to_string(a.loc.line) + ":" + std::to_string(a.loc.column) +
+                       ": beam '" + b.name + "' has policy truncate, which only an explicit integrator runs, in a "
+                       "coupled model's split coordinates (no pin or slider_pin contacts, no joined structures); " +
+                       what + " (`mbfe simulate --adjust off` runs the original model)");
+  }
+}
+
 std::shared_ptr<const CoupledModel> AssembledModel::coupled_model(bool adjusted) const {
   if (kind_ != ModelKind::kCoupled)
     throw InvalidInput("model '" + model_.name + "' is not a coupled model (bodies and beams)");

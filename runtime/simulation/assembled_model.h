@@ -47,6 +47,13 @@ class AssembledModel {
   ///         active adjustment block.
   bool resolve_adjusted(std::optional<bool> asked) const;
 
+  /// Policy truncate (a modal truncation) is integrated only in split
+  /// coordinates by an explicit integrator (docs/damping-adjustment.md,
+  /// "Policy truncate"). With `adjusted` true and some beam truncated, throws
+  /// InvalidInput at that beam's adjustment block: `what` says which path
+  /// cannot take it. Does nothing otherwise.
+  void refuse_truncation(bool adjusted, const std::string& what) const;
+
   /// Mass properties per body, for the message of a singular mass matrix.
   const std::vector<BodyInertia>& bodies() const { return bodies_; }
   /// Where the bodies' position and velocity coordinates sit (nq, nv,

@@ -18,6 +18,7 @@ class BeamRun final : public ModelRun {
   BeamRun(const AssembledModel& model, const SimulationRequest& request)
       : beams_(model.beams()), state_in_rows_(request.state_in_rows) {
     adjusted_ = model.resolve_adjusted(request.adjust);
+    model.refuse_truncation(adjusted_, "this is a model of beams alone");
     try {
       ode_ = modal_beam_ode(beams_, adjusted_);
     } catch (const std::invalid_argument& e) {

@@ -89,6 +89,10 @@ class CoupledRun final : public ModelRun {
       return p.acceleration && p.body < 0;
     });
     split_ = !index3_ && !augmented && adjusted_ && !beam_accelerations && dynamics_->split_low_rank_beams();
+    if (adjusted_ && !split_)
+      model.refuse_truncation(true, augmented            ? "--formulation augmented steps the nodal form"
+                                    : beam_accelerations ? "a beam acceleration probe needs the nodal form"
+                                                         : "this model cannot be split");
     if (split_) {
       system_ = std::make_unique<SplitBeamSystem>(dynamics_);
     } else if (index3_) {
@@ -117,6 +121,26 @@ class CoupledRun final : public ModelRun {
       // An initial state off the constraints is projected onto them: say so.
       Eigen::VectorXd q(n), qd(n);
       system_->full_state(0.0, y0_, q, qd);
+      // A truncated beam starts at its projection on the kept modes
+      // (docs/damping-adjustment.md, "Policy truncate"), not on the contacts.
+      std::string truncated;
+      if (split_) {
+        for (int k : dynamics_->split_structures()) {
+          const LowRankStructure& st = *dynamics_->model().structures()[static_cast<std::size_t>(k)];
+          if (!st.truncated()) continue;
+          const LowRankStructure::Range& r = st.ranges().front();
+          const int off = dynamics_->nb() + r.offset;
+          std::ostringstream os;
+          os << (truncated.empty() ? "" : "; ") << "'" << st.name() << "' (" << st.rank() << " of " << r.size
+             << " modes), largest change of a coordinate "
+             << (q.segment(off, r.size) - q0_.segment(off, r.size)).cwiseAbs().maxCoeff();
+          truncated += os.str();
+          q.segment(off, r.size) = q0_.segment(off, r.size);
+          qd.segment(off, r.size) = qd0_.segment(off, r.size);
+        }
+      }
+      if (!truncated.empty())
+        notices_.push_back("policy truncate: the initial state projected on the kept modes of the beams: " + truncated);
       const std::string moved = projection_moves(q0_, q);
       const std::string moved_rates = projection_moves(qd0_, qd);
       if (!moved.empty() || !moved_rates.empty()) {

@@ -65,6 +65,7 @@ LowRankStructure::Parts adjusted_parts(const std::string& name, std::vector<LowR
   } else {
     parts.every_mode = true;
   }
+  parts.truncated = adjusted.policy == ir::AdjustmentPolicy::kTruncate;
   parts.phi = basis.phi.leftCols(kept);
   parts.k = basis.omega.head(kept).array().square().matrix();
   parts.mass = {1.0, Eigen::VectorXd::Zero(kept)};

@@ -27,7 +27,8 @@ LowRankStructure::LowRankStructure(Parts parts)
       mass_(std::move(parts.mass)),
       damping_(std::move(parts.damping)),
       stiffness_(std::move(parts.stiffness)),
-      every_mode_(parts.every_mode) {
+      every_mode_(parts.every_mode),
+      truncated_(parts.truncated) {
   for (const Range& r : ranges_) size_ += r.size;
   const Eigen::Index m = k_.size();
   std::ostringstream problem;

@@ -71,6 +71,9 @@ class LowRankStructure {
     /// Eq (27): the kept modes are every mode and nothing is capped (the
     /// policies that change each mode on its own); false for the low-rank form.
     bool every_mode = false;
+    /// Policy truncate: the beam moves in the kept modes alone (q = Phi_L eta);
+    /// only split coordinates integrate it (CoupledDynamics::split_accelerations).
+    bool truncated = false;
   };
 
   /// @throws std::invalid_argument when the parts do not fit together (the
@@ -84,6 +87,7 @@ class LowRankStructure {
   const std::vector<Range>& ranges() const { return ranges_; }
   Base base() const { return base_; }
   bool every_mode() const { return every_mode_; }
+  bool truncated() const { return truncated_; }
   const Eigen::SparseMatrix<double>& M() const { return M_; }
   const Eigen::SparseMatrix<double>& K() const { return K_; }
   /// The constant load P (N), stacked, and its shares B^-1 P / mu_M and
@@ -158,6 +162,7 @@ class LowRankStructure {
   Eigen::VectorXd k_, b_;
   Term mass_, damping_, stiffness_;
   bool every_mode_ = false;
+  bool truncated_ = false;
   // The free acceleration's modal weights (see free_acceleration):
   // a = B^-1 r / mu_M - (mu_C v + mu_K q) / mu_M + Phi_L (w_g .* g + e_v .* x_v + e_q .* x_q),
   // r = P + f, g = Phi_L^T r.

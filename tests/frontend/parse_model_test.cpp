@@ -287,6 +287,7 @@ beams:
   EXPECT_EQ(policy_of("{omega_limit: 2000, policy: keep_slow}"), AdjustmentPolicy::kKeepSlow);
   EXPECT_EQ(policy_of("{omega_limit: 2000, policy: paper_eq25}"), AdjustmentPolicy::kPaperEq25);
   EXPECT_EQ(policy_of("{omega_limit: 2000, policy: none}"), AdjustmentPolicy::kNone);
+  EXPECT_EQ(policy_of("{omega_limit: 2000, policy: truncate}"), AdjustmentPolicy::kTruncate);
 }
 
 // ---- exact messages --------------------------------------------------------
