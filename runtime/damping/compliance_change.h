@@ -63,7 +63,9 @@ class ComplianceChangeEstimator {
   ///        structure its supports hold; the damping itself is read from
   ///        `original`, Rayleigh beyond a partial basis);
   /// @param basis its modes, complete or the lowest ones (every mode beyond a
-  ///        partial basis must be one the policy cap or mass changes);
+  ///        partial basis must be one the policy cap or mass changes); held by
+  ///        reference, not copied (a catenary wire's is tens of MB): it must
+  ///        outlive the estimator;
   /// @param original their modal dynamics (unit modal mass).
   /// @throws std::invalid_argument when the sizes do not fit, std::runtime_error
   ///         when K is not positive definite.
@@ -80,6 +82,12 @@ class ComplianceChangeEstimator {
     double tail0 = 0.0, tail1 = 0.0, tail2 = 0.0;  // sum p^2, p^2/k, p^2/k^2 beyond the basis
   };
   Point point(const CompliancePoint& p) const;
+  /// Many points at once, the same numbers as point() one by one would give
+  /// up to round-off: the products with the basis as matrix products over
+  /// fixed blocks of points, the blocks on the machine's cores (a catenary
+  /// wire has hundreds of points, each product a pass over its kept modes).
+  /// Each point's bits depend on its block alone, not on the thread count.
+  std::vector<Point> points(const std::vector<CompliancePoint>& given) const;
 
   /// The change `adjusted` (the basis' modes adjusted: adjust_modes of
   /// `original`) makes at the point; with `band`, band_change too (512
@@ -95,10 +103,14 @@ class ComplianceChangeEstimator {
 
  private:
   Eigen::SparseMatrix<double> M_;
-  ModalBasis basis_;
+  const ModalBasis& basis_;
   std::vector<ModalDynamics> original_;
   std::shared_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> k_factor_, m_factor_;
   double alpha_ = 0.0, beta_ = 0.0;  // 1/s, s: the Rayleigh damping c = alpha + beta k fitted to the basis' modes
+
+  // One block of points (first, first + count) of `given` into `out`.
+  void point_block(const std::vector<CompliancePoint>& given, std::size_t first, std::size_t count,
+                   std::vector<Point>& out) const;
 };
 
 }  // namespace mbfe::runtime

@@ -91,20 +91,39 @@ std::vector<double> positions(const Place& place, const BeamSystem& system) {
 // hold: its relative change is round-off over round-off, and it is skipped.
 constexpr double kHeldShare = 1e-9;
 
-/// The place's points on the path (positions), without the ones the supports hold.
-std::vector<std::pair<double, ComplianceChangeEstimator::Point>> path_points(const ComplianceChangeEstimator& estimator,
-                                                                            const Place& place,
-                                                                            const BeamSystem& system) {
-  std::vector<std::pair<double, ComplianceChangeEstimator::Point>> out;
-  double largest = 0.0;
-  for (const double s : positions(place, system)) {
-    out.emplace_back(s, estimator.point({deflection_weights(system, s), place.series, place.omega}));
-    largest = std::max(largest, place.series + out.back().second.compliance);
+/// Each place's points (its positions), without the ones the supports hold
+/// on a moving place's path; all places' points computed as one batch.
+std::vector<std::vector<std::pair<double, ComplianceChangeEstimator::Point>>> place_points(
+    const ComplianceChangeEstimator& estimator, const std::vector<Place>& on_beam, const BeamSystem& system) {
+  std::vector<CompliancePoint> batch;
+  std::vector<std::vector<double>> where;
+  for (const Place& place : on_beam) {
+    where.push_back(positions(place, system));
+    for (const double s : where.back()) batch.push_back({deflection_weights(system, s), place.series, place.omega});
   }
-  if (place.moving)
-    out.erase(std::remove_if(out.begin(), out.end(),
-                             [&](const auto& p) { return place.series + p.second.compliance < kHeldShare * largest; }),
-              out.end());
+  std::vector<ComplianceChangeEstimator::Point> computed = estimator.points(batch);
+  std::vector<std::vector<std::pair<double, ComplianceChangeEstimator::Point>>> out(on_beam.size());
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < on_beam.size(); ++i) {
+    const Place& place = on_beam[i];
+    double largest = 0.0;
+    for (const double s : where[i]) {
+      out[i].emplace_back(s, std::move(computed[next++]));
+      largest = std::max(largest, place.series + out[i].back().second.compliance);
+    }
+    if (place.moving)
+      out[i].erase(std::remove_if(out[i].begin(), out[i].end(),
+                                  [&](const auto& p) { return place.series + p.second.compliance < kHeldShare * largest; }),
+                   out[i].end());
+  }
+  return out;
+}
+
+/// The places on one beam.
+std::vector<Place> places_on(const std::vector<Place>& all, std::size_t beam) {
+  std::vector<Place> out;
+  for (const Place& place : all)
+    if (place.beam == static_cast<int>(beam)) out.push_back(place);
   return out;
 }
 
@@ -147,9 +166,10 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
       out.not_estimated.push_back(name + ": " + e.what());
       continue;
     }
-    const BeamSystem& system = part.system;
-    for (const Place& place : all) {
-      if (place.beam != static_cast<int>(i)) continue;
+    const std::vector<Place> on_beam = places_on(all, i);
+    const auto computed = place_points(*estimator, on_beam, part.system);
+    for (std::size_t k = 0; k < on_beam.size(); ++k) {
+      const Place& place = on_beam[k];
       AdjustmentEstimatePoint best;
       best.what = place.what;
       best.beam = ir.beams[i].name;
@@ -158,7 +178,7 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
       best.series_compliance = place.series;
       best.omega = place.omega;
       bool first = true;
-      for (const auto& [s, point] : path_points(*estimator, place, system)) {
+      for (const auto& [s, point] : computed[k]) {
         const ComplianceChange change = estimator->evaluate(point, part.adjusted, /*band=*/true);
         const double estimate = std::max(change.static_change, change.change);
         if (change.band_change > best.band_change) {
@@ -217,9 +237,8 @@ double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAn
                        "); give omega_limit in rad/s");
   const ComplianceChangeEstimator estimator(part.system.M, part.system.K, part.system.C, part.basis, part.original);
   std::vector<ComplianceChangeEstimator::Point> points;
-  for (const Place& place : places(model, {}))
-    if (place.beam == static_cast<int>(beam))
-      for (auto& [s, point] : path_points(estimator, place, part.system)) points.push_back(std::move(point));
+  for (auto& on_place : place_points(estimator, places_on(places(model, {}), beam), part.system))
+    for (auto& [s, point] : on_place) points.push_back(std::move(point));
   ir::Adjustment adjustment = given.adjustment;
   adjustment.omega_limit_auto = false;
   const auto largest = [&](double omega_limit) {

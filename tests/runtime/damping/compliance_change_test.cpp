@@ -182,5 +182,43 @@ TEST(ComplianceChange, APartialBasisMatchesTheCompleteOne) {
   }
 }
 
+// A batch's points are computed by blocks of matrix products, one point
+// alone by a block of one: the same sums in another order.
+constexpr double kBatchRel = 1e-10;
+
+TEST(ComplianceChange, ManyPointsAtOnceGiveWhatEachGivesAlone) {
+  const Beam b = paper_beam();
+  const AdjustedModes all = adjust_modes(b.part.original, adjustment(ir::AdjustmentPolicy::kCap));
+  int kept = 0;
+  while (all.change[kept] == ModeChange::kKept) ++kept;
+  const int m = kept + 1;  // a partial basis: the tail's moments are computed too
+  ModalBasis partial{b.part.basis.omega.head(m), b.part.basis.phi.leftCols(m), false};
+  std::vector<ModalDynamics> original(b.part.original.begin(), b.part.original.begin() + m);
+  const ComplianceChangeEstimator estimator(b.part.system.M, b.part.system.K, b.part.system.C, partial, original);
+  // Every free DOF a point of its own (100 points: several blocks), each
+  // with its own spring and frequency, so a point given another's block
+  // slot shows.
+  std::vector<CompliancePoint> batch;
+  for (Eigen::Index i = 0; i < b.part.system.M.rows(); ++i) {
+    CompliancePoint p{Eigen::VectorXd::Unit(b.part.system.M.rows(), i), 1e-9 * static_cast<double>(i + 1),
+                      10.0 * static_cast<double>(i)};
+    batch.push_back(p);
+  }
+  const std::vector<ComplianceChangeEstimator::Point> got = estimator.points(batch);
+  ASSERT_EQ(got.size(), batch.size());
+  for (std::size_t i = 0; i < batch.size(); ++i) {
+    SCOPED_TRACE("point " + std::to_string(i));
+    const ComplianceChangeEstimator::Point want = estimator.point(batch[i]);
+    EXPECT_EQ(got[i].series_compliance, want.series_compliance);
+    EXPECT_EQ(got[i].omega, want.omega);
+    EXPECT_NEAR(got[i].compliance, want.compliance, kBatchRel * want.compliance);
+    EXPECT_NEAR(got[i].tail0, want.tail0, kBatchRel * want.tail0);
+    EXPECT_NEAR(got[i].tail1, want.tail1, kBatchRel * want.tail1);
+    EXPECT_NEAR(got[i].tail2, want.tail2, kBatchRel * want.tail2);
+    ASSERT_EQ(got[i].p2.size(), want.p2.size());
+    EXPECT_LE((got[i].p2 - want.p2).norm(), kBatchRel * want.p2.norm());
+  }
+}
+
 }  // namespace
 }  // namespace mbfe::runtime
