@@ -99,17 +99,18 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
       d.split_delta.segment(o / 2, m) = split->e.segment(o, m) - split->e.segment(o + m, m);
       d.split_delta_rate.segment(o / 2, m) = split->ed.segment(o, m) - split->ed.segment(o + m, m);
     }
-    for (int c : d.split_read) {
-      for (std::size_t k = 0; k < split_structure_.size(); ++k) {
-        const LowRankStructure& st = *model.structures()[split_structure_[k]];
-        const LowRankStructure::Range& r = st.ranges().front();
+    auto nodal = [&](int k) {
+      const LowRankStructure& st = *model.structures()[split_structure_[static_cast<std::size_t>(k)]];
+      const LowRankStructure::Range& r = st.ranges().front();
+      const Eigen::Index m = st.rank();
+      const int o = split_offset_[static_cast<std::size_t>(k)] / 2;
+      for (int c : d.split_read) {
         if (c < r.offset || c >= r.offset + r.size) continue;
-        const Eigen::Index m = st.rank();
-        const int o = split_offset_[k] / 2;
         d.split_qc[c] = q[nb + c] + st.phi().row(c - r.offset).dot(d.split_delta.segment(o, m));
         d.split_qcd[c] = qd[nb + c] + st.phi().row(c - r.offset).dot(d.split_delta_rate.segment(o, m));
       }
-    }
+    };
+    lanes_->run(static_cast<int>(split_structure_.size()), nodal);
     qc = d.split_qc.data();
     qcd = d.split_qcd.data();
   }
@@ -160,17 +161,25 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
     if (extra) rck += d.fc_extra.segment(off, nk);
     solve_ldlt(model.mass_factor(static_cast<int>(k)), rck, d.ac0.segment(off, nk), d.ldlt);
   }
-  for (std::size_t s = 0; s < structures.size(); ++s) {
+  // Each structure writes its own range of a_c0 and its own workspace: on
+  // the lanes when it pays (split_low_rank_beams).
+  auto structure_acceleration = [&](int i) {
+    const std::size_t s = static_cast<std::size_t>(i);
     const LowRankStructure& st = *structures[s];
     const int k = split != nullptr ? split_of_structure_[s] : -1;
     if (k >= 0) {
       const LowRankStructure::Range& r = st.ranges().front();
       split_accelerations(k, q.segment(nb + r.offset, r.size), qd.segment(nb + r.offset, r.size),
                           extra ? d.fc_extra.data() + r.offset : nullptr, *split, d.ac0.segment(r.offset, r.size));
-      continue;
+      return;
     }
     st.free_acceleration(q.data() + nb, qd.data() + nb, extra ? d.fc_extra.data() : nullptr, d.ac0.data(),
                          d.structures[s]);
+  };
+  if (lanes_ != nullptr && split != nullptr) {
+    lanes_->run(static_cast<int>(structures.size()), structure_acceleration);
+  } else {
+    for (std::size_t s = 0; s < structures.size(); ++s) structure_acceleration(static_cast<int>(s));
   }
   // W = M_c^-1 J_c^T column by column (each row of J_c lives on one beam, on
   // at most 4 of its DOFs): a combination of the cached columns M_c^-1 e_k.

@@ -18,6 +18,7 @@
 #include "runtime/coupled/contact_constraints.h"
 #include "runtime/coupled/coupled_model.h"
 #include "runtime/coupled/partition_choice.h"
+#include "runtime/coupled/structure_lanes.h"
 #include "runtime/linalg/small_lu.h"
 
 namespace mbfe::runtime {
@@ -143,6 +144,11 @@ class CoupledDynamics {
   const std::vector<int>& split_offsets() const { return split_offset_; }
   /// Entries of the stacked kept-mode coordinates (sum of 2 m).
   int num_split_coordinates() const { return split_size_; }
+  /// After split_low_rank_beams: whether the split structures' work of an
+  /// evaluation runs on two threads (chosen by their size; the same bits
+  /// either way), and a choice other than the default's.
+  bool threaded_structures() const { return lanes_ != nullptr && lanes_->threaded(); }
+  void set_threaded_structures(bool threaded) { lanes_ = std::make_unique<StructureLanes>(threaded); }
   /// After evaluate() with split structures: the kept-mode accelerations [eta''; zeta''], stacked.
   const Eigen::VectorXd& split_accelerations() const { return data_.split_acc; }
   /// The beam coordinates of split structure k (index into split_structures())
@@ -199,6 +205,9 @@ class CoupledDynamics {
   // their [eta; zeta] start, and per structure its place among them or -1.
   std::vector<int> split_structure_, split_offset_, split_of_structure_;
   int split_size_ = 0;
+  // The split structures' work of an evaluation on two threads, when they
+  // are large enough for it to pay (split_low_rank_beams).
+  std::unique_ptr<StructureLanes> lanes_;
 };
 
 }  // namespace mbfe::runtime

@@ -3,7 +3,17 @@
 // nodal and split coordinates, and their kept modes' accelerations.
 #include "runtime/coupled/coupled_dynamics.h"
 
+#include <thread>
+
 namespace mbfe::runtime {
+
+namespace {
+
+// Split structures of at least this many DOFs share an evaluation's work
+// between two threads (docs/performance.md, "Both cores in a step").
+constexpr int kLaneDofs = 2000;
+
+}  // namespace
 
 bool CoupledDynamics::split_low_rank_beams() {
   if (!split_structure_.empty()) return true;
@@ -21,6 +31,13 @@ bool CoupledDynamics::split_low_rank_beams() {
   }
   split_size_ = size;
   data_.split_acc.setZero(size);
+  // Two lanes pay when each split structure's share of an evaluation (a row
+  // of Phi_L per DOF the forces read, a sparse solve) outweighs handing it
+  // to another thread, tens of microseconds on a busy host.
+  std::size_t large = 0;
+  for (int s : split_structure_)
+    if (structures[static_cast<std::size_t>(s)]->ranges().front().size >= kLaneDofs) ++large;
+  lanes_ = std::make_unique<StructureLanes>(large >= 2 && std::thread::hardware_concurrency() >= 2);
   return true;
 }
 
