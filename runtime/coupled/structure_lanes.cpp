@@ -1,5 +1,7 @@
 #include "runtime/coupled/structure_lanes.h"
 
+#include <chrono>
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #endif
@@ -8,10 +10,14 @@ namespace mbfe::runtime {
 
 namespace {
 
-// How long a side spins before it sleeps: about 50 microseconds of pause
-// instructions, longer than the serial part of an evaluation between the
-// lanes' two handovers (forces, the rigid part), shorter than a time step.
-constexpr int kSpins = 2000;
+// How long a side spins before it sleeps: longer than the gaps between the
+// lanes' handovers in a run (an evaluation's serial part, the rest of a time
+// step and its report), so that a run seldom pays a sleep and a wake-up;
+// short enough to cost little when the other side has really gone. Spinning
+// yields the core now and then, so that on a busy host (a sweep's processes)
+// it gives way to the thread it waits for.
+constexpr std::chrono::microseconds kSpin{500};
+constexpr int kPausesPerCheck = 64;
 
 void pause() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -19,6 +25,20 @@ void pause() {
 #else
   std::this_thread::yield();
 #endif
+}
+
+/// Spins until done() or kSpin has passed; true if done().
+template <class Done>
+bool spin_until(Done done) {
+  const auto end = std::chrono::steady_clock::now() + kSpin;
+  for (int checks = 0;; ++checks) {
+    for (int i = 0; i < kPausesPerCheck; ++i) {
+      if (done()) return true;
+      pause();
+    }
+    if (std::chrono::steady_clock::now() > end) return done();
+    if (checks % 64 == 63) std::this_thread::yield();
+  }
 }
 
 }  // namespace
@@ -57,8 +77,7 @@ void StructureLanes::run_erased(int count, Call call, void* work) {
   } catch (...) {
     mine = std::current_exception();
   }
-  for (int i = 0; i < kSpins && finished_.load(std::memory_order_acquire) != generation; ++i) pause();
-  if (finished_.load(std::memory_order_acquire) != generation) {
+  if (!spin_until([&]() { return finished_.load(std::memory_order_acquire) == generation; })) {
     std::unique_lock<std::mutex> lock(mutex_);
     done_.wait(lock, [&]() { return finished_.load(std::memory_order_acquire) == generation; });
   }
@@ -72,8 +91,7 @@ void StructureLanes::serve() {
   unsigned long seen = 0;
   for (;;) {
     const auto waiting = [&]() { return !stop_.load() && posted_.load(std::memory_order_acquire) == seen; };
-    for (int i = 0; i < kSpins && waiting(); ++i) pause();
-    if (waiting()) {
+    if (!spin_until([&]() { return !waiting(); })) {
       std::unique_lock<std::mutex> lock(mutex_);
       wake_.wait(lock, [&]() { return !waiting(); });
     }
