@@ -179,6 +179,9 @@ class CoupledDynamics {
   void set_applied_load(int beam, double s, std::function<double(double)> value);
   /// Adds the applied loads at t to f_c (nc entries); true if there are any.
   bool add_applied_loads(double t, double* fc) const;
+  /// Whether loads set from outside act: then two evaluations at the same
+  /// t and state may differ (their values can change between the calls).
+  bool has_applied_loads() const { return !data_.applied.empty(); }
 
   /// Driven joints (`motion:`): their rigid coordinates, model order. In
   /// evaluate() their q and q' are those of the motion at t, whatever the

@@ -24,6 +24,14 @@ void SplitBeamSystem::unpack(const Eigen::VectorXd& y) {
 }
 
 void SplitBeamSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
+  // The state a run has just reported is the next step's first stage: its
+  // derivative is the report's, and the dynamics still describe it (one
+  // evaluation of five an RK4 step). Loads set from outside may have
+  // changed since the report: then it is evaluated again.
+  if (is_reported(t, y) && !dyn_->has_applied_loads()) {
+    ydot = ydot_;
+    return;
+  }
   report_valid_ = false;  // the dynamics' springs and links now describe this y
   unpack(y);
   const SplitState split{e_, ed_};
@@ -109,10 +117,14 @@ void SplitBeamSystem::full_state_at(double, const Eigen::VectorXd& y, const std:
   }
 }
 
+bool SplitBeamSystem::is_reported(double t, const Eigen::VectorXd& y) const {
+  return report_valid_ && t == report_t_ && y.size() == report_y_.size() && y == report_y_;
+}
+
 const ContactReport& SplitBeamSystem::report(double t, const Eigen::VectorXd& y) {
   // A run reports each accepted state twice (its tallies, its row); the
   // second time, nothing has been evaluated since the first.
-  if (report_valid_ && t == report_t_ && y.size() == report_y_.size() && y == report_y_) return report_;
+  if (is_reported(t, y)) return report_;
   rhs(t, y, ydot_);
   ContactReport& r = report_;
   r.lambda = lambda_;

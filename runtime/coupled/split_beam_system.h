@@ -40,6 +40,8 @@ class SplitBeamSystem : public CoupledSystem {
  private:
   // q_, qd_, e_, ed_ from y (q_c of split beams: their uniform part).
   void unpack(const Eigen::VectorXd& y);
+  // Whether (t, y) is the state of the last report, still described by the dynamics.
+  bool is_reported(double t, const Eigen::VectorXd& y) const;
 
   Partition independent_;  // every rigid coordinate independent (m = 0)
   Eigen::VectorXd q_, qd_, e_, ed_, qdd_, lambda_, ydot_;

@@ -161,5 +161,39 @@ TEST(SplitBeamSystem, StructuresOnTwoThreadsGiveTheSameBitsAsOnOne) {
   EXPECT_TRUE(y1 == y2) << "largest difference " << (y1 - y2).cwiseAbs().maxCoeff();
 }
 
+TEST(SplitBeamSystem, TheReportedStateIsNotEvaluatedAgainUnlessALoadSetFromOutsideMayHaveChanged) {
+  const Model model = load_catenary();
+  auto dyn = model.assembled().make_dynamics(true);
+  auto dyn_fresh = model.assembled().make_dynamics(true);
+  SplitBeamSystem split(dyn), fresh(dyn_fresh);
+  Eigen::VectorXd q, qd;
+  perturbed_state(model, dyn->nb(), q, qd);
+  dyn->impose_motion(0.01, q, qd);
+  const Eigen::VectorXd y = split.initial_state(0.01, q, qd);
+  Eigen::VectorXd other = y;
+  other[0] += 1e-3;
+  Eigen::VectorXd ydot, want;
+  split.rhs(0.01, other, ydot);  // the dynamics describe another state
+  split.report(0.01, y);
+  split.rhs(0.01, y, ydot);  // the reported state: the report's derivative
+  fresh.rhs(0.01, y, want);
+  EXPECT_TRUE(ydot == want) << "largest difference " << (ydot - want).cwiseAbs().maxCoeff();
+
+  // A load the caller sets after the report changes the derivative at the
+  // same state: it is evaluated again, on both systems alike.
+  double value = 0.0;
+  const auto load = [&value](double) { return value; };
+  // Between droppers, away from the middle support at 10 m.
+  dyn->set_applied_load(0, 6.5, load);
+  dyn_fresh->set_applied_load(0, 6.5, load);
+  split.report(0.01, y);
+  value = 500.0;  // N
+  const Eigen::VectorXd before = want;  // without the load
+  split.rhs(0.01, y, ydot);
+  fresh.rhs(0.01, y, want);
+  ASSERT_GT((want - before).cwiseAbs().maxCoeff(), 0.0) << "the load acts";
+  EXPECT_TRUE(ydot == want) << "largest difference " << (ydot - want).cwiseAbs().maxCoeff();
+}
+
 }  // namespace
 }  // namespace mbfe::runtime
