@@ -16,7 +16,7 @@ namespace {
 
 // Enough handovers that a lost wake-up or a race on the posted work would
 // show as a hang or a miscount.
-constexpr int kRounds = 20000;
+constexpr int kRounds = 5000;
 
 TEST(StructureLanes, EveryItemRunsOnceARoundOnOneThreadOrTwo) {
   for (const bool threaded : {false, true}) {
