@@ -11,7 +11,6 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <random>
 #include <string>
 
 #include "api/mbfe.h"
@@ -20,6 +19,7 @@
 #include "runtime/coupled/coordinate_partitioning.h"
 #include "runtime/coupled/split_beam_system.h"
 #include "tests/support/recorded_rows.h"
+#include "tests/support/perturbed_state.h"
 #include "tests/support/two_span_catenary.h"
 
 namespace mbfe {
@@ -40,21 +40,15 @@ class SplitCoordinates : public testing::TestWithParam<std::string> {};
 Model load(const std::string& policy) {
   std::string text = test::with_wire_adjustment(adjustment_block(policy));
   // A force running along the messenger: a load that changes with time.
-  const std::string anchor = "    tension: 16000\n";
-  text.insert(text.find(anchor) + anchor.size(),
-              "    loads: [{type: moving, value: -300.0, speed: 15.0, start: 0.0, t0: 0.0}]\n");
+  text = test::with_messenger_moving_load(text);
   return Model::parse(text, "split_coordinates.yaml");
 }
 
-// A state away from rest, the same for both forms: beam DOFs perturbed (seeded).
+// The seed of this file's perturbed states.
+constexpr unsigned kStateSeed = 20261123;
+
 void perturbed_state(const Model& model, int nb, Eigen::VectorXd& q, Eigen::VectorXd& qd) {
-  model.assembled().initial_coordinates(q, qd);
-  std::mt19937 rng(20261123);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (int i = nb; i < q.size(); ++i) {
-    q[i] = 2e-3 * u(rng);
-    qd[i] = 2e-2 * u(rng);
-  }
+  test::perturbed_state(model, nb, kStateSeed, q, qd);
 }
 
 TEST_P(SplitCoordinates, RoundTripToNodalCoordinates) {

@@ -72,4 +72,13 @@ inline std::string with_wire_adjustment(const std::string& block) {
   return text;
 }
 
+/// `text` (kTwoSpanCatenary or a variant) with a force of 300 N running
+/// along the messenger at 15 m/s: a load that changes with time.
+inline std::string with_messenger_moving_load(std::string text) {
+  const std::string anchor = "    tension: 16000\n";
+  text.insert(text.find(anchor) + anchor.size(),
+              "    loads: [{type: moving, value: -300.0, speed: 15.0, start: 0.0, t0: 0.0}]\n");
+  return text;
+}
+
 }  // namespace mbfe::test

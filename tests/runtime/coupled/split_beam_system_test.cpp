@@ -11,7 +11,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-#include <random>
 #include <string>
 
 #include "api/mbfe.h"
@@ -22,6 +21,7 @@
 #include "runtime/integrators/integrator_spec.h"
 #include "runtime/simulation/assembled_model.h"
 #include "runtime/structure/low_rank_structure.h"
+#include "tests/support/perturbed_state.h"
 #include "tests/support/two_span_catenary.h"
 
 namespace mbfe::runtime {
@@ -42,21 +42,15 @@ Model load_catenary() {
   // The model text of tests/api/split_coordinates_test.cpp (policy cap), so
   // that the two tests share one compiled solver.
   std::string text = test::with_wire_adjustment("{omega_limit: 800.0, margin: 0.1, policy: cap}");
-  const std::string anchor = "    tension: 16000\n";
-  text.insert(text.find(anchor) + anchor.size(),
-              "    loads: [{type: moving, value: -300.0, speed: 15.0, start: 0.0, t0: 0.0}]\n");
+  text = test::with_messenger_moving_load(text);
   return Model::parse(text, "split_coordinates.yaml");
 }
 
-// Beam DOFs away from rest (seeded); the rigid coordinates as the model starts.
+// The seed of this file's perturbed states.
+constexpr unsigned kStateSeed = 20261124;
+
 void perturbed_state(const Model& model, int nb, Eigen::VectorXd& q, Eigen::VectorXd& qd) {
-  model.assembled().initial_coordinates(q, qd);
-  std::mt19937 rng(20261124);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (int i = nb; i < q.size(); ++i) {
-    q[i] = 2e-3 * u(rng);
-    qd[i] = 2e-2 * u(rng);
-  }
+  test::perturbed_state(model, nb, kStateSeed, q, qd);
 }
 
 TEST(SplitBeamSystem, RightHandSideMappedToNodalIsTheLowRankAcceleration) {
