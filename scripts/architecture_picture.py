@@ -47,6 +47,7 @@ direct = {f: [u for u in uses[f] if not any(u in reach(v) for v in uses[f] if v 
 holds = {
     "errors": "InvalidInput, InvalidRequest,\nnumerical faults",
     "abi": "the C interface of a\ngenerated solver",
+    "platform": "the thread budget",
     "linalg": "small LU, Woodbury,\nmodal blocks",
     "fem": "beam element, assembly,\nloads in time",
     "integrators": "integrators, FixedStepRun\n(the stepwise driver)",

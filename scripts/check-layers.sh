@@ -37,18 +37,19 @@ runtime_allowed_for() {
   case "$1" in
     errors) echo "errors" ;;
     abi) echo "abi" ;;
+    platform) echo "platform errors" ;;
     linalg) echo "linalg errors" ;;
     fem) echo "fem errors" ;;
     integrators) echo "integrators errors" ;;
     signal) echo "signal errors" ;;
     modal) echo "modal fem errors" ;;
     stability) echo "stability integrators modal errors" ;;
-    damping) echo "damping modal fem integrators errors" ;;
-    structure) echo "structure damping modal fem integrators linalg errors" ;;
+    damping) echo "damping modal fem integrators platform errors" ;;
+    structure) echo "structure damping modal fem integrators linalg platform errors" ;;
     multibody) echo "multibody abi integrators linalg errors" ;;
-    coupled) echo "coupled multibody structure damping modal fem integrators linalg stability abi errors" ;;
-    simulation) echo "simulation coupled multibody structure damping modal fem integrators linalg stability signal abi errors" ;;
-    advisor) echo "advisor simulation coupled multibody structure damping modal fem integrators linalg stability abi errors" ;;
+    coupled) echo "coupled multibody structure damping modal fem integrators linalg stability abi platform errors" ;;
+    simulation) echo "simulation coupled multibody structure damping modal fem integrators linalg stability signal abi platform errors" ;;
+    advisor) echo "advisor simulation coupled multibody structure damping modal fem integrators linalg stability abi platform errors" ;;
     *) echo "" ;;
   esac
 }

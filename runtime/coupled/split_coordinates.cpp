@@ -3,7 +3,7 @@
 // nodal and split coordinates, and their kept modes' accelerations.
 #include "runtime/coupled/coupled_dynamics.h"
 
-#include <thread>
+#include "runtime/platform/thread_budget.h"
 
 namespace mbfe::runtime {
 
@@ -37,7 +37,7 @@ bool CoupledDynamics::split_low_rank_beams() {
   std::size_t large = 0;
   for (int s : split_structure_)
     if (structures[static_cast<std::size_t>(s)]->ranges().front().size >= kLaneDofs) ++large;
-  lanes_ = std::make_unique<StructureLanes>(large >= 2 && std::thread::hardware_concurrency() >= 2);
+  lanes_ = std::make_unique<StructureLanes>(large >= 2 && thread_budget() >= 2);
   return true;
 }
 

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "runtime/modal/modal_analysis.h"
+#include "runtime/platform/thread_budget.h"
 
 namespace mbfe::runtime {
 
@@ -108,7 +109,7 @@ BeamModel analyse_beams(const ir::Model& model, const BeamAnalysisOptions& optio
     return 2 * (b.elements + 1) > options.dense_limit;
   });
   const std::size_t threads =
-      large ? std::min<std::size_t>(count, std::max(1u, std::thread::hardware_concurrency())) : 1;
+      large ? std::min<std::size_t>(count, static_cast<std::size_t>(thread_budget())) : 1;
   if (threads > 1) {
     std::atomic<std::size_t> next{0};
     std::vector<std::thread> pool;

@@ -9,6 +9,8 @@
 #include <string>
 #include <thread>
 
+#include "runtime/platform/thread_budget.h"
+
 namespace mbfe::runtime {
 
 namespace {
@@ -89,7 +91,7 @@ std::vector<ComplianceChangeEstimator::Point> ComplianceChangeEstimator::points(
                                   " entries, the structure " + std::to_string(M_.rows()) + " coordinates");
   std::vector<Point> out(given.size());
   const std::size_t blocks = (given.size() + kPointBlock - 1) / kPointBlock;
-  const std::size_t threads = std::min<std::size_t>(blocks, std::max(1u, std::thread::hardware_concurrency()));
+  const std::size_t threads = std::min<std::size_t>(blocks, static_cast<std::size_t>(thread_budget()));
   const auto block = [&](std::size_t b) {
     const std::size_t first = b * kPointBlock;
     point_block(given, first, std::min(kPointBlock, given.size() - first), out);
