@@ -6,18 +6,19 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
-#include <thread>
 
 #include "api/mbfe.h"
 #include "frontend/parse_model.h"
 #include "frontend/parse_sweep.h"
 #include "frontend/sha256.h"
 #include "generator/emit/generate_solver.h"
+#include "runtime/platform/thread_budget.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "tool/file_checks.h"
@@ -45,7 +46,8 @@ Warnings about likely unit mistakes in the model file or a point's values
 (docs/robustness.md, "Warnings") are printed once for the sweep, not per
 point, and listed under "warnings" in summary.json.
 
-  --jobs N         points run at once on this machine (default: every core)
+  --jobs N         points run at once on this machine (default: every core this
+                   process may use); each point may use cores / N threads (MBFE_THREADS)
   --point I        run point I only (what each Slurm task does)
   --collect        write the summary from the results present
   --slurm          submit a Slurm job array (one task per point) and a collect
@@ -139,6 +141,15 @@ int run_local(const ir::Sweep& sweep, const std::string& sweep_file, const std::
   for (const std::string& k : key) keys[k] = k.empty() ? KeyState::kReady : KeyState::kIdle;
 
   const std::string exe = self_exe();
+  // The points share the cores: each may use its share of threads (a
+  // catenary's two wires step on two threads when a point has two cores).
+  const unsigned per_point = std::max(1u, runtime::thread_budget() / static_cast<unsigned>(jobs));
+  std::vector<std::string> environment = {"MBFE_THREADS=" + std::to_string(per_point)};
+  for (char** e = environ; *e != nullptr; ++e)
+    if (std::strncmp(*e, "MBFE_THREADS=", 13) != 0) environment.emplace_back(*e);
+  std::vector<char*> envp;
+  for (std::string& e : environment) envp.push_back(e.data());
+  envp.push_back(nullptr);
   const auto start = std::chrono::steady_clock::now();
   std::map<pid_t, std::size_t> running;  // pid -> index into todo
   std::vector<bool> started(todo.size(), false);
@@ -157,7 +168,7 @@ int run_local(const ir::Sweep& sweep, const std::string& sweep_file, const std::
       for (std::string& a : args) argv.push_back(a.data());
       argv.push_back(nullptr);
       pid_t pid = 0;
-      if (::posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ) != 0)
+      if (::posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), envp.data()) != 0)
         throw std::runtime_error("cannot start " + exe);
       running[pid] = k;
     }
@@ -261,7 +272,7 @@ int cmd_sweep(const Args& args) {
   }
   if (parsed.has("dry-run") || parsed.has("partition") || parsed.has("time") || parsed.has("array-limit"))
     throw UsageError("--dry-run, --partition, --time and --array-limit go with --slurm");
-  long jobs = static_cast<long>(std::max(1u, std::thread::hardware_concurrency()));
+  long jobs = static_cast<long>(runtime::thread_budget());
   if (const auto j = parsed.number("jobs")) {
     if (*j < 1 || *j != std::floor(*j)) throw UsageError("--jobs must be a positive whole number");
     jobs = static_cast<long>(*j);
