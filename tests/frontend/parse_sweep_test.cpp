@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "frontend/parse_model.h"
@@ -101,6 +102,27 @@ TEST(ParseSweep, BadFilesAreRefusedWhereTheyAreWrong) {
   // Two probes of one label would be two columns of one name.
   expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "simulate: {probes: [deck@5, deck@2, deck@5]}\n"),
                "5:37", "probes: 'deck@5' is given twice");
+}
+
+// Every sweep the project ships parses, its paths exist in its model, and
+// every point's model is a valid model (the points' values written in).
+TEST(ParseSweep, EveryShippedSweepGivesValidModelsAtEveryPoint) {
+  const std::filesystem::path folder = std::filesystem::path(MBFE_SOURCE_DIR) / "models" / "sweeps";
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++files;
+    SCOPED_TRACE(entry.path().string());
+    const ir::Sweep sweep = load_sweep_file(entry.path().string());
+    const std::string model = read_sweep_model(sweep);
+    check_sweep_paths(sweep, model);
+    ASSERT_GT(sweep.points(), 0);
+    for (long i = 0; i < sweep.points(); ++i) {
+      const ir::Model m = parse_model_text(point_model_text(sweep, model, i), "point " + std::to_string(i));
+      EXPECT_FALSE(m.name.empty());
+    }
+  }
+  EXPECT_GE(files, 3) << "the shipped sweeps were not found";
 }
 
 }  // namespace
