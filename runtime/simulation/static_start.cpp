@@ -1,3 +1,10 @@
+// The static start's Newton solvers (static_start.h): the dense one with a
+// difference Jacobian for small models, the sparse one with the implicit
+// integrators' tangent for large ones, and their drivers per kind of model.
+// One file of about 470 lines because both solvers share their convergence
+// tests and their round-off floors (the constants below, each measured on a
+// shipped model), and the mechanism diagnosis the drivers report; the
+// seating of contacts on their running surfaces is running_surface_seat.cpp.
 #include "runtime/simulation/static_start.h"
 
 #include <Eigen/QR>
