@@ -25,9 +25,10 @@ void SplitBeamSystem::unpack(const Eigen::VectorXd& y) {
 
 void SplitBeamSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
   // The state a run has just reported is the next step's first stage: its
-  // derivative is the report's, and the dynamics still describe it (one
-  // evaluation of five an RK4 step). Loads set from outside may have
-  // changed since the report: then it is evaluated again.
+  // derivative is the report's, and the dynamics still describe it (an RK4
+  // step and its report then cost four evaluations, not five). Loads set
+  // from outside may have changed since the report: then it is evaluated
+  // again.
   if (is_reported(t, y) && !dyn_->has_applied_loads()) {
     ydot = ydot_;
     return;

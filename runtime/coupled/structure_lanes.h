@@ -24,8 +24,8 @@ class StructureLanes {
 
   bool threaded() const { return worker_.joinable(); }
 
-  /// Calls work(i) for every i in [0, count) and returns when all have; the
-  /// first exception an item threw is rethrown.
+  /// Calls work(i) for every i in [0, count) and returns when all have; an
+  /// item's exception is rethrown (the caller's side's before the worker's).
   template <class Work>
   void run(int count, Work& work) {
     run_erased(count, [](void* w, int i) { (*static_cast<Work*>(w))(i); }, &work);
