@@ -12,6 +12,19 @@ namespace mbfe::test {
 
 // models/four_bar.yaml by hand: ground pivots O = (0, 0) and D = (0.6, 0),
 // crank OB (0.2 m), coupler BC (0.7 m), rocker DC (0.5 m), gravity -y.
+// The bodies and the loop of models/four_bar.yaml, with FourBar's
+// dimensions and inertias, as a model file's `bodies:` and `constraints:`.
+inline constexpr const char* kFourBarBodies =
+    "bodies:\n"
+    "  - {name: crank, parent: ground, joint: {type: revolute}, mass: 0.4, inertia: 0.0015, com: [0.1, 0],"
+    " points: {end: [0.2, 0]}}\n"
+    "  - {name: coupler, parent: crank, joint: {type: revolute, at: [0.2, 0]}, mass: 1.2, inertia: 0.05,"
+    " com: [0.35, 0], points: {end: [0.7, 0]}}\n"
+    "  - {name: rocker, parent: ground, joint: {type: revolute, at: [0.6, 0]}, mass: 0.9, inertia: 0.019,"
+    " com: [0.25, 0], points: {end: [0.5, 0]}}\n"
+    "constraints:\n"
+    "  - {name: coupler_rocker, type: revolute, a: {body: coupler, point: end}, b: {body: rocker, point: end}}\n";
+
 struct FourBar {
   static constexpr double kGravity = 9.81;
   static constexpr double kPi = 3.14159265358979323846;

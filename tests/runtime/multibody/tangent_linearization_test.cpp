@@ -33,15 +33,7 @@ constexpr double kFrequencyRel = 1e-6;
 std::string four_bar_at(double theta, double phi, double psi) {
   std::ostringstream os;
   os.precision(17);
-  os << "model: four_bar_hanging\ngravity: [0, -9.81]\nbodies:\n"
-        "  - {name: crank, parent: ground, joint: {type: revolute}, mass: 0.4, inertia: 0.0015, com: [0.1, 0],"
-        " points: {end: [0.2, 0]}}\n"
-        "  - {name: coupler, parent: crank, joint: {type: revolute, at: [0.2, 0]}, mass: 1.2, inertia: 0.05,"
-        " com: [0.35, 0], points: {end: [0.7, 0]}}\n"
-        "  - {name: rocker, parent: ground, joint: {type: revolute, at: [0.6, 0]}, mass: 0.9, inertia: 0.019,"
-        " com: [0.25, 0], points: {end: [0.5, 0]}}\n"
-        "constraints:\n"
-        "  - {name: coupler_rocker, type: revolute, a: {body: coupler, point: end}, b: {body: rocker, point: end}}\n"
+  os << "model: four_bar_hanging\ngravity: [0, -9.81]\n" << test::kFourBarBodies
      << "initial: {q: {crank: " << theta << ", coupler: " << phi - theta << ", rocker: " << psi << "}}\n";
   return os.str();
 }

@@ -28,15 +28,7 @@ TEST(LoopStaticStart, FourBarWithACrankSpringRestsWhereItsVirtualWorkVanishes) {
   double phi, psi;
   bar.angles(theta, phi, psi);
   const std::string yaml =
-      "model: four_bar_sprung\ngravity: [0, -9.81]\nbodies:\n"
-      "  - {name: crank, parent: ground, joint: {type: revolute}, mass: 0.4, inertia: 0.0015, com: [0.1, 0],"
-      " points: {end: [0.2, 0]}}\n"
-      "  - {name: coupler, parent: crank, joint: {type: revolute, at: [0.2, 0]}, mass: 1.2, inertia: 0.05,"
-      " com: [0.35, 0], points: {end: [0.7, 0]}}\n"
-      "  - {name: rocker, parent: ground, joint: {type: revolute, at: [0.6, 0]}, mass: 0.9, inertia: 0.019,"
-      " com: [0.25, 0], points: {end: [0.5, 0]}}\n"
-      "constraints:\n"
-      "  - {name: coupler_rocker, type: revolute, a: {body: coupler, point: end}, b: {body: rocker, point: end}}\n"
+      std::string("model: four_bar_sprung\ngravity: [0, -9.81]\n") + test::kFourBarBodies +
       "loads:\n  - {type: spring_damper, joint: crank, stiffness: 5.0, damping: 0, rest: 1.0}\n"
       "initial: {q: {crank: 1.0, coupler: -0.5357560074605321, rocker: 1.2995365385792519}, qd: {crank: 2.0},"
       " static: true}\n";
