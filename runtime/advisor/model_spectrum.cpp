@@ -45,6 +45,13 @@ ModelSpectrum loop_spectrum(const AssembledModel& model, Eigen::VectorXd q, Eige
   if (static_start) loop_static_state(model.ir(), *system, q, v);
   const Eigen::VectorXd y0 = system->state_of(0.0, q, v);
   const std::vector<int> independent = system->partition().independent;
+  if (independent.empty()) {
+    // The loops and the drives fix every coordinate: a kinematic model,
+    // nothing for an integrator to make unstable.
+    ModelSpectrum out;
+    out.linearized = true;
+    return out;
+  }
   const Eigen::MatrixXd a = tangent_jacobian(*system, model.coordinates(), independent, 0.0, y0);
   return from_linearization(balanced_spectrum(a), static_cast<int>(independent.size()));
 }

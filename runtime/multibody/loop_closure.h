@@ -1,9 +1,15 @@
-// The closed loops of a model of bodies (`constraints:`), Phi(q) = 0 with nc
-// rows, as the loop systems use them: the kernels' Phi, J (nc x nv, with
+// The closed loops of a model of bodies (`constraints:`), Phi(q, t) = 0 with
+// nc rows, as the loop systems use them: the kernels' Phi, J (nc x nv, with
 // respect to the velocity coordinates) and gamma = -(dJ/dt) v; the choice of
 // the dependent velocity coordinates (the largest pivots of J); and Newton's
 // closure of Phi by moving either the dependent coordinates only or all of
 // them by the least-norm step (docs/partitioning.md, "Closed loops").
+//
+// Driven joints (`motion:`) are driving constraints, one row each after the
+// loops' rows: q_d - motion(t) = 0, a unit row of J, J v = motion'(t) at
+// velocity level and gamma = motion''(t) at acceleration level. Their
+// multipliers are the drives' reactions; their coordinates are always among
+// the dependent ones (no other column reaches their rows).
 #pragma once
 
 #include <Eigen/Core>
@@ -25,19 +31,32 @@ struct LoopPartition {
 class LoopClosure {
  public:
   /// @param model a solver with loop kernels (num_loop_rows > 0); must outlive this.
-  /// @throws std::invalid_argument if it has no loops or more rows than velocities.
+  /// @throws std::invalid_argument if it has no loops or more rows (loops'
+  ///         and drives') than velocities.
   LoopClosure(const mbfe_model_v1& model, RigidCoordinates coordinates);
 
+  /// Every row: the loops' and then one per driven joint.
   int rows() const { return nc_; }
+  int loop_rows() const { return nl_; }
+  int driven_rows() const { return nc_ - nl_; }
   const RigidCoordinates& coordinates() const { return coordinates_; }
+  /// Per driven joint, model order: its entry of v (its entry of q is
+  /// the model's driven_positions).
+  const std::vector<int>& driven_velocities() const { return drive_v_; }
 
-  /// Phi(q) (nc; m, or a sine or cosine for an orientation row).
-  void phi(const double* q, Eigen::VectorXd& out) const;
+  /// Phi(q, t) (nc; m, or a sine or cosine for an orientation row; a
+  /// drive's row in its coordinate's unit).
+  void phi(const double* q, double t, Eigen::VectorXd& out) const;
   /// J(q) (nc x nv).
   void jacobian(const double* q, Eigen::MatrixXd& out) const;
-  /// gamma(q, v) = -(dJ/dt) v (nc).
-  void gamma(const double* q, const double* v, Eigen::VectorXd& out) const;
-  /// max |Phi(q)|, the loop residual (m).
+  /// gamma(q, v, t) = -(dJ/dt) v, motion''(t) in the drives' rows (nc).
+  void gamma(const double* q, const double* v, double t, Eigen::VectorXd& out) const;
+  /// The right-hand side of J v = nu(t): 0 in the loops' rows, motion'(t)
+  /// in the drives' (nc).
+  void velocity_target(double t, Eigen::VectorXd& out) const;
+  /// The driven coordinates of q and v set to their motion at t.
+  void impose_motion(double t, double* q, double* v) const;
+  /// max |Phi(q)| over the loops' rows, the loop residual (m).
   double residual(const double* q) const;
 
   /// The best dependent coordinates at q: the first nc pivots of a
@@ -58,8 +77,8 @@ class LoopClosure {
   /// Newton with the least-norm step dv = -J^T (J J^T)^-1 Phi over all
   /// velocity coordinates (the augmented formulation's projection).
   int project(double* q, double t) const;
-  /// v <- v - J^T (J J^T)^-1 J v: the nearest velocity with Phi' = 0.
-  void project_velocity(const double* q, double* v) const;
+  /// v <- v - J^T (J J^T)^-1 (J v - nu(t)): the nearest velocity with Phi' = 0.
+  void project_velocity(const double* q, double t, double* v) const;
 
   /// Newton stops when max |Phi| is below this (m): a few ulps of a
   /// linkage of metres.
@@ -74,11 +93,16 @@ class LoopClosure {
 
  private:
   [[noreturn]] void fail(const Eigen::VectorXd& phi, double t, int iterations) const;
+  /// The motion at t into the scratch below.
+  void motion(double t) const;
 
   const mbfe_model_v1& model_;
   RigidCoordinates coordinates_;
-  int nc_, nv_;
-  std::vector<std::string> row_loop_;  // per row: its loop's name
+  int nl_, nc_, nv_;
+  std::vector<int> drive_v_, drive_q_;  // per driven joint: its entry of v, of q
+  std::vector<std::string> row_loop_;   // per row: its loop's name, or the driven body's
+  std::vector<std::string> row_what_;   // per row: "loop 'name'" or "the motion of 'body'"
+  mutable Eigen::VectorXd motion_q_, motion_qd_, motion_qdd_;
 };
 
 }  // namespace mbfe::runtime

@@ -32,9 +32,6 @@ LoopSystem::LoopSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodi
   if (model.abi_version != MBFE_MODEL_ABI_VERSION || model.num_coordinates != nq_)
     throw std::invalid_argument(std::string("LoopSystem: the solver of '") + model.model_name +
                                 "' does not match its coordinate layout or this runtime's ABI");
-  if (model.num_driven > 0)
-    throw std::invalid_argument(std::string("model '") + model.model_name +
-                                "': driven joints (motion:) in a model with closed loops are not supported yet");
   m_row_.resize(nv_, nv_);
   m_.resize(nv_, nv_);
   f_.resize(nv_);
@@ -53,10 +50,13 @@ void LoopSystem::position_rates(const double* q, const double* v, double* qdot) 
 
 void LoopSystem::make_consistent(double t, Eigen::VectorXd& q, Eigen::VectorXd& v) const {
   normalize_quaternions(closure_.coordinates(), q.data());
+  closure_.impose_motion(t, q.data(), v.data());
   // The coordinates given a velocity stay independent where the loops allow,
-  // so that what the user set moves as set (a crank's angle and rate).
+  // so that what the user set moves as set (a crank's angle and rate). A
+  // driven coordinate is dependent whatever its rate: its row says so.
   std::vector<bool> keep(nv_);
   for (int i = 0; i < nv_; ++i) keep[i] = v[i] != 0.0;
+  for (int d : closure_.driven_velocities()) keep[d] = false;
   const LoopPartition part = closure_.choose_partition(q.data(), t, nullptr, &keep);
   closure_.close(q.data(), part.dependent, t);
   // The partition at the closed q (it may differ from the one at the given q).
@@ -64,7 +64,8 @@ void LoopSystem::make_consistent(double t, Eigen::VectorXd& q, Eigen::VectorXd& 
   Eigen::MatrixXd J;
   closure_.jacobian(q.data(), J);
   Eigen::MatrixXd jd(nc_, nc_);
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(nc_);
+  Eigen::VectorXd b;
+  closure_.velocity_target(t, b);
   for (int k = 0; k < nc_; ++k) jd.col(k) = J.col(closed.dependent[k]);
   for (int i : closed.independent) b -= J.col(i) * v[i];
   const Eigen::VectorXd vd = jd.partialPivLu().solve(b);
@@ -91,15 +92,21 @@ void LoopPartitionedSystem::close(double t, const Eigen::VectorXd& y) {
   ju_.resize(nc_, nu);
   for (int k = 0; k < nc_; ++k) jd_.col(k) = j_.col(part_.dependent[k]);
   for (int k = 0; k < nu; ++k) ju_.col(k) = j_.col(part_.independent[k]);
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jd_);
-  // v = B v_u: B's independent rows the identity, its dependent rows -J_d^-1 J_u.
-  const Eigen::MatrixXd dependent_rows = -lu.solve(ju_);
+  lu_.compute(jd_);
+  // v = B v_u + w: B's independent rows the identity, its dependent rows
+  // -J_d^-1 J_u; w the drives' share, J_d w_d = nu(t), zero without drives.
+  const Eigen::MatrixXd dependent_rows = -lu_.solve(ju_);
   b_.setZero(nv_, nu);
   for (int k = 0; k < nu; ++k) b_(part_.independent[k], k) = 1.0;
   for (int k = 0; k < nc_; ++k) b_.row(part_.dependent[k]) = dependent_rows.row(k);
   v_ = b_ * y.tail(nu);
-  closure_.gamma(q_.data(), v_.data(), gamma_);
-  const Eigen::VectorXd cd = lu.solve(gamma_);
+  if (closure_.driven_rows() > 0) {
+    closure_.velocity_target(t, nu_);
+    const Eigen::VectorXd wd = lu_.solve(nu_);
+    for (int k = 0; k < nc_; ++k) v_[part_.dependent[k]] += wd[k];
+  }
+  closure_.gamma(q_.data(), v_.data(), t, gamma_);
+  const Eigen::VectorXd cd = lu_.solve(gamma_);
   c_.setZero(nv_);
   for (int k = 0; k < nc_; ++k) c_[part_.dependent[k]] = cd[k];
 }
@@ -112,15 +119,34 @@ void LoopPartitionedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::Vecto
   }
   close(t, y);
   dynamics(q_.data(), v_.data(), t);
-  reduced_.noalias() = b_.transpose() * m_ * b_;
-  rhs_.noalias() = b_.transpose() * (q_force_ - f_ - m_ * c_);
-  llt_.compute(reduced_);
-  if (llt_.info() != Eigen::Success || !(llt_.rcond() >= RigidSystem::kMassRcondFloor))
-    throw_singular_mass_matrix(model_, bodies_, m_, t);
-  a_u_ = llt_.solve(rhs_);
+  if (nv_ > nc_) {
+    reduced_.noalias() = b_.transpose() * m_ * b_;
+    rhs_.noalias() = b_.transpose() * (q_force_ - f_ - m_ * c_);
+    llt_.compute(reduced_);
+    if (llt_.info() != Eigen::Success || !(llt_.rcond() >= RigidSystem::kMassRcondFloor))
+      throw_singular_mass_matrix(model_, bodies_, m_, t);
+    a_u_ = llt_.solve(rhs_);
+  } else {
+    a_u_.resize(0);  // the loops and drives fix every coordinate: kinematics only
+  }
   ydot.resize(size());
   position_rates(q_.data(), v_.data(), ydot.data());
   ydot.tail(nv_ - nc_) = a_u_;
+}
+
+void LoopPartitionedSystem::drive_reactions(double t, const Eigen::VectorXd& y, Eigen::VectorXd& out) {
+  const int nd = closure_.driven_rows();
+  out.resize(nd);
+  if (nd == 0) return;
+  Eigen::VectorXd ydot;
+  rhs(t, y, ydot);
+  // M v' + J^T mu = Q - F with v' = B v_u' + c; the dependent columns give
+  // J_d^T mu = (Q - F - M v')_d, and a drive exerts -mu of its row.
+  const Eigen::VectorXd residual = q_force_ - f_ - m_ * (b_ * a_u_ + c_);
+  Eigen::VectorXd rd(nc_);
+  for (int k = 0; k < nc_; ++k) rd[k] = residual[part_.dependent[k]];
+  const Eigen::VectorXd mu = lu_.transpose().solve(rd);
+  out = -mu.tail(nd);
 }
 
 void LoopPartitionedSystem::after_step(double t, Eigen::VectorXd& y) {
@@ -175,7 +201,7 @@ void LoopAugmentedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorX
   const Eigen::VectorXd v = y.tail(nv_);
   dynamics(q_.data(), v.data(), t);
   closure_.jacobian(q_.data(), j_);
-  closure_.gamma(q_.data(), v.data(), gamma_);
+  closure_.gamma(q_.data(), v.data(), t, gamma_);
   saddle_.setZero();
   saddle_.topLeftCorner(nv_, nv_) = m_;
   saddle_.topRightCorner(nv_, nc_) = j_.transpose();
@@ -198,7 +224,16 @@ void LoopAugmentedSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorX
 void LoopAugmentedSystem::after_step(double t, Eigen::VectorXd& y) {
   normalize_quaternions(closure_.coordinates(), y.data());
   closure_.project(y.data(), t);
-  closure_.project_velocity(y.data(), y.data() + nq_);
+  closure_.project_velocity(y.data(), t, y.data() + nq_);
+}
+
+void LoopAugmentedSystem::drive_reactions(double t, const Eigen::VectorXd& y, Eigen::VectorXd& out) {
+  const int nd = closure_.driven_rows();
+  out.resize(nd);
+  if (nd == 0) return;
+  Eigen::VectorXd ydot;
+  rhs(t, y, ydot);
+  out = -x_.tail(nd);  // [v'; mu] solves M v' + J^T mu = Q - F; a drive exerts -mu
 }
 
 std::string LoopAugmentedSystem::name(int i) const {

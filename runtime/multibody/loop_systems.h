@@ -2,9 +2,13 @@
 // J^T lambda, Phi(q) = 0, as a first-order system for the integrators, in two
 // formulations (docs/partitioning.md, "Closed loops"):
 //
+// Driven joints (`motion:`) are rows of the closure too (loop_closure.h):
+// their coordinates are dependent, J v = nu(t) carries their rates, and the
+// multipliers of their rows are the drives' reactions.
+//
 // LoopPartitionedSystem: y = [q; v_u], the nq position coordinates and the
 // nv - nc independent velocities. Every evaluation closes the dependent
-// directions of q by Newton (|Phi| <= 1e-13 m), takes v_d from J v = 0 and
+// directions of q by Newton (|Phi| <= 1e-13 m), takes v_d from J v = nu and
 // the accelerations from the reduced equations B^T M B v_u' = B^T (Q - F -
 // M c) (v = B v_u, v' = B v_u' + c, J c = gamma); after each step q is
 // closed in place and the partition chosen again when J_d has become
@@ -12,13 +16,14 @@
 //
 // LoopAugmentedSystem: y = [q; v], accelerations and multipliers from
 // [[M, J^T], [J, 0]] [v'; -lambda] = [Q - F; gamma]; after each step q is
-// projected back onto Phi = 0 (least-norm Newton) and v onto J v = 0. A
+// projected back onto Phi = 0 (least-norm Newton) and v onto J v = nu. A
 // cross-check of the partitioned formulation.
 //
 // Both renormalise quaternions after each step.
 #pragma once
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -34,8 +39,7 @@ namespace mbfe::runtime {
 class LoopSystem : public OdeSystem {
  public:
   /// @param model a solver with loop kernels; must outlive this object.
-  /// @throws std::invalid_argument as LoopClosure, or for driven joints
-  ///         (not supported with loops).
+  /// @throws std::invalid_argument as LoopClosure.
   LoopSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies, RigidCoordinates coordinates);
 
   const LoopClosure& closure() const { return closure_; }
@@ -54,6 +58,9 @@ class LoopSystem : public OdeSystem {
   virtual Eigen::VectorXd state_of(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v) = 0;
   /// The full state (q closed, v) of y.
   virtual void full_state(double t, const Eigen::VectorXd& y, Eigen::VectorXd& q, Eigen::VectorXd& v) = 0;
+  /// The generalized force (N or N m) each driven joint exerts at (t, y) to
+  /// follow its motion, model order: minus its row's multiplier.
+  virtual void drive_reactions(double t, const Eigen::VectorXd& y, Eigen::VectorXd& out) = 0;
 
  protected:
   /// M, F, Q at (q, v, t) into m_, f_, q_force_. @throws SingularMassMatrixError.
@@ -81,6 +88,7 @@ class LoopPartitionedSystem final : public LoopSystem {
   /// Chooses the partition at q (which must be consistent).
   Eigen::VectorXd state_of(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v) override;
   void full_state(double t, const Eigen::VectorXd& y, Eigen::VectorXd& q, Eigen::VectorXd& v) override;
+  void drive_reactions(double t, const Eigen::VectorXd& y, Eigen::VectorXd& out) override;
 
   const LoopPartition& partition() const { return part_; }
   int repartitions() const { return repartitions_; }
@@ -90,13 +98,14 @@ class LoopPartitionedSystem final : public LoopSystem {
   static constexpr double kRepartitionRatio = 0.1;
 
  private:
-  // q_ closed from y, J_d factored, v_ = B v_u.
+  // q_ closed from y, J_d factored, v_ = B v_u + w.
   void close(double t, const Eigen::VectorXd& y);
 
   LoopPartition part_;
   int repartitions_ = 0;
-  Eigen::VectorXd q_, v_, gamma_, c_, rhs_, a_u_;
+  Eigen::VectorXd q_, v_, gamma_, nu_, c_, rhs_, a_u_;
   Eigen::MatrixXd j_, jd_, ju_, b_, reduced_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   Eigen::LLT<Eigen::MatrixXd> llt_;
 };
 
@@ -112,6 +121,7 @@ class LoopAugmentedSystem final : public LoopSystem {
   std::string name(int i) const override;
   Eigen::VectorXd state_of(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v) override;
   void full_state(double t, const Eigen::VectorXd& y, Eigen::VectorXd& q, Eigen::VectorXd& v) override;
+  void drive_reactions(double t, const Eigen::VectorXd& y, Eigen::VectorXd& out) override;
 
  private:
   Eigen::VectorXd q_, gamma_, rhs_, x_;

@@ -1,7 +1,8 @@
 // A model of bodies with closed loops: the partitioned formulation (default)
 // or the augmented one (--formulation augmented), from a consistent initial
 // state (or the equilibrium on the loops, for a static start); rows t, q, v,
-// loop_residual (docs/partitioning.md, "Closed loops").
+// loop_residual and a <body>_drive per driven joint (docs/partitioning.md,
+// "Closed loops").
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -32,6 +33,7 @@ class LoopRun final : public ModelRun {
     }
     Eigen::VectorXd q0, v0;
     model.initial_coordinates(q0, v0);
+    system_->closure().impose_motion(0.0, q0.data(), v0.data());  // the motion fixes them: nothing to announce
     Eigen::VectorXd q = q0, v = v0;
     const bool static_start = request.static_start.value_or(model.ir().initial.static_start);
     try {
@@ -70,6 +72,11 @@ class LoopRun final : public ModelRun {
     }
     layout_.columns.push_back("loop_residual");
     layout_.units.push_back("m");
+    for (int d : system_->closure().driven_velocities()) {
+      const ir::Body& body = model.ir().bodies[c.velocity_body[d]];
+      layout_.columns.push_back(body.name + "_drive");
+      layout_.units.push_back(body.joint.type == ir::JointType::kPrismatic ? "N" : "N m");
+    }
     variant_ = augmented ? "augmented formulation" : "partitioned formulation";
   }
 
@@ -82,7 +89,11 @@ class LoopRun final : public ModelRun {
     std::size_t k = 1;
     for (Eigen::Index i = 0; i < q_.size(); ++i) values[k++] = q_[i];
     for (Eigen::Index i = 0; i < v_.size(); ++i) values[k++] = v_[i];
-    values[k] = system_->closure().residual(q_.data());
+    values[k++] = system_->closure().residual(q_.data());
+    if (system_->closure().driven_rows() > 0) {
+      system_->drive_reactions(t, y, reactions_);
+      for (Eigen::Index i = 0; i < reactions_.size(); ++i) values[k++] = reactions_[i];
+    }
     if (q != nullptr) {
       *q = q_;
       *qd = v_;
@@ -126,7 +137,7 @@ class LoopRun final : public ModelRun {
 
   const AssembledModel& model_;
   std::unique_ptr<LoopSystem> system_;
-  Eigen::VectorXd q_, v_;
+  Eigen::VectorXd q_, v_, reactions_;
 };
 
 }  // namespace

@@ -326,8 +326,7 @@ void loop_static_state(const ir::Model& model, LoopPartitionedSystem& system, Ei
                        [&](const Eigen::VectorXd& state, Eigen::VectorXd& q_closed) {
                          system.full_state(0.0, state, q_closed, v_closed);
                        });
-  system.full_state(0.0, y, q, v);  // closed
-  v.setZero();
+  system.full_state(0.0, y, q, v);  // closed; at rest but for the driven joints' rates
 }
 
 void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::VectorXd& q, Eigen::VectorXd& qd) {

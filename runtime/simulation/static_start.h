@@ -90,7 +90,8 @@ void quaternion_static_state(const ir::Model& model, RigidSystem& system, Eigen:
 /// Newton on the increments of the independent coordinates of the partition
 /// at q, the loops closed by `system` at every iterate (docs/partitioning.md,
 /// "Closed loops"). q must close the loops on entry; it becomes the
-/// equilibrium (closed), v zero. @throws ir::ModelError at
+/// equilibrium (closed), v zero but for the driven joints' motion (the
+/// velocities that motion gives through the loops). @throws ir::ModelError at
 /// `model.initial.loc` when there is none.
 void loop_static_state(const ir::Model& model, LoopPartitionedSystem& system, Eigen::VectorXd& q, Eigen::VectorXd& v);
 
