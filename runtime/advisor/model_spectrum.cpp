@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "runtime/multibody/loop_systems.h"
 #include "runtime/multibody/tangent_linearization.h"
 #include "runtime/simulation/assembled_model.h"
+#include "runtime/simulation/settled_state.h"
 #include "runtime/simulation/static_start.h"
 
 namespace mbfe::runtime {
@@ -31,9 +33,45 @@ ModelSpectrum from_linearization(const StateSpectrum& linearized, int coordinate
   return out;
 }
 
+// A modulus below this share of the largest is a zero mode's round-off (a
+// free spin, a neutral direction), not a scale of the motion: a relaxation
+// damped and timed by it would take forever to settle.
+constexpr double kZeroModeShare = 1e-6;
+
+// The smallest and largest moduli of the eigenvalues of `spectrum` that are
+// not zero modes: the scales of its modes, for a dynamic relaxation (false
+// when there is none).
+bool mode_scales(const ModelSpectrum& spectrum, double& omega_min, double& omega_max) {
+  omega_min = 0.0;
+  omega_max = 0.0;
+  for (const auto& l : spectrum.full.eigenvalues) omega_max = std::max(omega_max, std::abs(l));
+  for (const auto& l : spectrum.full.eigenvalues) {
+    const double w = std::abs(l);
+    if (!(w > kZeroModeShare * omega_max)) continue;
+    omega_min = omega_min == 0.0 ? w : std::min(omega_min, w);
+  }
+  return omega_min > 0.0;
+}
+
+// The spectrum at an equilibrium the motion settles into, when it is a
+// stable one; otherwise `at_start` (an unstable equilibrium, an inverted
+// pendulum, tells less than the state the run starts from).
+ModelSpectrum settled_or_start(ModelSpectrum at_start, const std::function<bool(double, double)>& settle,
+                               const std::function<ModelSpectrum()>& linearize_settled) {
+  double omega_min, omega_max;
+  if (at_start.growing == 0 || !mode_scales(at_start, omega_min, omega_max)) return at_start;
+  if (!settle(omega_min, omega_max)) return at_start;
+  ModelSpectrum out = linearize_settled();
+  if (out.growing > 0) return at_start;
+  out.at_equilibrium = true;
+  out.growing_at_start = at_start.growing;
+  return out;
+}
+
 // A model with closed loops, linearised as it is integrated: the partitioned
 // system y = [q; v_u] in its independent coordinates at the consistent
-// initial state, the dependent ones closed by Newton at every evaluation.
+// initial state, the dependent ones closed by Newton at every evaluation;
+// released away from equilibrium, at the equilibrium it settles into.
 ModelSpectrum loop_spectrum(const AssembledModel& model, Eigen::VectorXd q, Eigen::VectorXd v, bool static_start) {
   std::unique_ptr<LoopPartitionedSystem> system;
   try {
@@ -43,21 +81,32 @@ ModelSpectrum loop_spectrum(const AssembledModel& model, Eigen::VectorXd q, Eige
   }
   system->make_consistent(0.0, q, v);
   if (static_start) loop_static_state(model.ir(), *system, q, v);
-  const Eigen::VectorXd y0 = system->state_of(0.0, q, v);
-  const std::vector<int> independent = system->partition().independent;
-  if (independent.empty()) {
-    // The loops and the drives fix every coordinate: a kinematic model,
-    // nothing for an integrator to make unstable.
-    ModelSpectrum out;
-    out.linearized = true;
-    return out;
-  }
-  const Eigen::MatrixXd a = tangent_jacobian(*system, model.coordinates(), independent, 0.0, y0);
-  return from_linearization(balanced_spectrum(a), static_cast<int>(independent.size()));
+  const auto linearize = [&]() {
+    const Eigen::VectorXd y0 = system->state_of(0.0, q, v);
+    const std::vector<int> independent = system->partition().independent;
+    if (independent.empty()) {
+      // The loops and the drives fix every coordinate: a kinematic model,
+      // nothing for an integrator to make unstable.
+      ModelSpectrum out;
+      out.linearized = true;
+      return out;
+    }
+    const Eigen::MatrixXd a = tangent_jacobian(*system, model.coordinates(), independent, 0.0, y0);
+    return from_linearization(balanced_spectrum(a), static_cast<int>(independent.size()));
+  };
+  ModelSpectrum at_start = linearize();
+  if (static_start) return at_start;
+  return settled_or_start(
+      std::move(at_start),
+      [&](double omega_min, double omega_max) {
+        return loop_settled_state(model.ir(), *system, omega_min, omega_max, q, v);
+      },
+      linearize);
 }
 
 // A tree with spherical or free joints: y = [q; v] in the three rotation
-// increments of each quaternion (not its four components).
+// increments of each quaternion (not its four components); released away
+// from equilibrium, at the equilibrium it settles into.
 ModelSpectrum quaternion_spectrum(const AssembledModel& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                   bool static_start) {
   const RigidCoordinates& c = model.coordinates();
@@ -69,7 +118,17 @@ ModelSpectrum quaternion_spectrum(const AssembledModel& model, const Eigen::Vect
   if (static_start) quaternion_static_state(model.ir(), system, y0);
   std::vector<int> all(c.nv);
   for (int i = 0; i < c.nv; ++i) all[i] = i;
-  return from_linearization(balanced_spectrum(tangent_jacobian(system, c, all, 0.0, y0)), c.nv);
+  const auto linearize = [&]() {
+    return from_linearization(balanced_spectrum(tangent_jacobian(system, c, all, 0.0, y0)), c.nv);
+  };
+  ModelSpectrum at_start = linearize();
+  if (static_start) return at_start;
+  return settled_or_start(
+      std::move(at_start),
+      [&](double omega_min, double omega_max) {
+        return quaternion_settled_state(model.ir(), system, omega_min, omega_max, y0);
+      },
+      linearize);
 }
 
 }  // namespace
@@ -100,23 +159,16 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
         system.impose_motion(0.0, y0);
         if (static_start) rigid_static_state(model.ir(), system, y0);
         ModelSpectrum at_start = from_linearization(linearized_spectrum(system, 0.0, y0), n);
-        if (static_start || at_start.growing == 0) return at_start;
-        // Not an equilibrium: the motion swings about the nearest one.
+        if (static_start) return at_start;
+        // Not an equilibrium: the motion swings about the nearest one. None
+        // (a mechanism, a free body): the local estimate is all there is.
         Eigen::VectorXd equilibrium = y0;
-        double omega_min = 0.0, omega_max = 0.0;
-        for (const auto& l : at_start.full.eigenvalues) {
-          const double w = std::abs(l);
-          if (w == 0.0) continue;
-          omega_min = omega_min == 0.0 ? w : std::min(omega_min, w);
-          omega_max = std::max(omega_max, w);
-        }
-        // None (a mechanism, a free body): the local estimate is all there is.
-        if (!rigid_settled_state(model.ir(), system, omega_min, omega_max, equilibrium)) return at_start;
-        ModelSpectrum out = from_linearization(linearized_spectrum(system, 0.0, equilibrium), n);
-        if (out.growing > 0) return at_start;  // an unstable equilibrium (inverted pendulum) tells less
-        out.at_equilibrium = true;
-        out.growing_at_start = at_start.growing;
-        return out;
+        return settled_or_start(
+            std::move(at_start),
+            [&](double omega_min, double omega_max) {
+              return rigid_settled_state(model.ir(), system, omega_min, omega_max, equilibrium);
+            },
+            [&]() { return from_linearization(linearized_spectrum(system, 0.0, equilibrium), n); });
       }
       case ModelKind::kCoupled: {
         const std::shared_ptr<CoupledDynamics> dynamics = model.make_dynamics(adjusted);

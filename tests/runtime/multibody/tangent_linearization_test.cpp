@@ -2,7 +2,8 @@
 // own (closed loops, quaternions), in their minimal tangent coordinates, as
 // mbfe stability takes it (Model::spectrum): the four-bar hanging at rest
 // against its one-degree-of-freedom equation m_eff(theta) theta'' =
-// -dV/dtheta written here from the geometry, a spherical pendulum against
+// -dV/dtheta written here from the geometry (and the shipped four-bar,
+// released away from rest, where it settles), a spherical pendulum against
 // its closed-form frequency, and a free body without gravity (only zero
 // modes).
 #include <gtest/gtest.h>
@@ -89,6 +90,47 @@ TEST(TangentLinearization, SphericalPendulumSwingsInTwoEqualPairs) {
   }
   EXPECT_EQ(swinging, 4);
   EXPECT_EQ(zero, 2);
+}
+
+TEST(TangentLinearization, AFourBarReleasedAwayFromRestIsLinearisedWhereItSettles) {
+  // models/four_bar.yaml starts at crank 1 rad turning at 2 rad/s: there the
+  // linearisation grows (the motion leaves the state). The advisor relaxes
+  // it to the hanging equilibrium and reads the modes there: the reduced
+  // equation's frequency at the oracle's hanging angle.
+  const FourBar bar;
+  const double theta = bar.hanging_angle();
+  const double omega = std::sqrt(bar.curvature(theta) / bar.effective_mass(theta));
+  const runtime::ModelSpectrum s = Model::load(std::string(MBFE_SOURCE_DIR) + "/models/four_bar.yaml").spectrum(false);
+  EXPECT_TRUE(s.at_equilibrium);
+  EXPECT_GT(s.growing_at_start, 0);
+  EXPECT_EQ(s.growing, 0);
+  ASSERT_EQ(s.full.eigenvalues.size(), 2u);
+  EXPECT_NEAR(largest_imaginary(s.full), omega, kFrequencyRel * omega);
+}
+
+TEST(TangentLinearization, ABallPendulumReleasedTiltedIsLinearisedWhereItHangs) {
+  // The ball pendulum above tilted 2 rad about x (above the horizontal,
+  // where the linearisation grows) and let go: the advisor relaxes it to
+  // hanging straight down and finds the two equal pairs there.
+  const double m = 2.0, l = 0.8, A = 0.01;
+  const Model model = Model::parse(
+      "model: ball_pendulum_tilted\ndimension: 3\ngravity: [0, 0, -9.81]\nbodies:\n"
+      "  - {name: bob, parent: ground, joint: {type: spherical}, mass: 2.0, inertia: [0.01, 0.01, 0.004, 0, 0, 0],"
+      " com: [0, 0, -0.8]}\n"
+      "initial: {q: {bob: [0.5403023058681398, 0.8414709848078965, 0, 0]}}\n",
+      "ball_pendulum_tilted.yaml");
+  const runtime::ModelSpectrum s = model.spectrum(false);
+  EXPECT_TRUE(s.at_equilibrium);
+  EXPECT_GT(s.growing_at_start, 0);
+  ASSERT_EQ(s.full.eigenvalues.size(), 6u);
+  const double omega = std::sqrt(m * kGravity * l / (A + m * l * l));
+  int swinging = 0;
+  for (const auto& lambda : s.full.eigenvalues) {
+    if (lambda == 0.0) continue;
+    EXPECT_NEAR(std::abs(lambda.imag()), omega, kFrequencyRel * omega) << lambda;
+    ++swinging;
+  }
+  EXPECT_EQ(swinging, 4);
 }
 
 TEST(TangentLinearization, FreeBodyWithoutGravityHasOnlyZeroModes) {
