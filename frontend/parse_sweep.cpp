@@ -211,7 +211,7 @@ ir::Sweep parse_sweep_text(const std::string& text, const std::string& display_p
   }
   if (!root.IsMap()) throw ModelError(display_path, {1, 1}, "expected a sweep: a map starting with 'sweep:'");
   const MapView top(display_path, root, "", "", SourceLoc{1, 1});
-  top.allow({"sweep", "description", "model", "vary", "mode", "simulate", "collect"});
+  top.allow({"sweep", "description", "model", "set", "vary", "mode", "simulate", "collect"});
   ir::Sweep sweep;
   sweep.source_path = display_path;
   sweep.name = top.identifier(top.require("sweep"), kMaxNameLength);
@@ -225,6 +225,25 @@ ir::Sweep parse_sweep_text(const std::string& text, const std::string& display_p
   for (std::size_t i = 0; i < items.size(); ++i) {
     const MapView view(display_path, items[i], "vary #" + std::to_string(i + 1), "", vary.value_loc);
     sweep.vary.push_back(parse_variable(view));
+  }
+  if (const Field* set = top.find("set")) {
+    const MapView view = top.sub(*set);
+    for (const Field& f : view.fields()) {
+      ir::SweepVariable v;
+      v.path = f.key;
+      v.loc = f.key_loc;
+      v.keys = split_path(v.path);
+      for (const std::string& k : v.keys)
+        if (k.empty()) view.fail(f.key_loc, "set: path '" + shown(v.path) + "' has an empty key");
+      if (!f.value.IsScalar())
+        view.fail(f.value_loc, "set: " + shown(v.path) + ": expected a number or a string, got " + describe(f.value));
+      v.values.push_back(f.value.Scalar());
+      for (const ir::SweepVariable& varied : sweep.vary)
+        if (varied.path == v.path)
+          view.fail(f.key_loc, "set: path '" + shown(v.path) + "' is also varied (vary at line " +
+                                   std::to_string(varied.loc.line) + "): give it in one place");
+      sweep.set.push_back(std::move(v));
+    }
   }
   if (const Field* mode = top.find("mode")) sweep.zip = top.choice(*mode, {"product", "zip"}) == 1;
   if (sweep.zip) {
@@ -286,11 +305,16 @@ std::string overridden_sweep_model(const ir::Sweep& sweep, const std::string& mo
 
 void check_sweep_paths(const ir::Sweep& sweep, const std::string& model_text) {
   const YAML::Node root = load_model_yaml(sweep, model_text);
+  for (const ir::SweepVariable& v : sweep.set) walk(sweep, v, root, sweep_model_path(sweep));
   for (const ir::SweepVariable& v : sweep.vary) walk(sweep, v, root, sweep_model_path(sweep));
 }
 
 std::string point_model_text(const ir::Sweep& sweep, const std::string& model_text, long i) {
   YAML::Node root = YAML::Clone(load_model_yaml(sweep, model_text));
+  for (const ir::SweepVariable& v : sweep.set) {
+    YAML::Node node = walk(sweep, v, root, sweep_model_path(sweep));
+    node = v.values.front();
+  }
   const std::vector<int> idx = sweep.indices(i);
   for (std::size_t k = 0; k < sweep.vary.size(); ++k) {
     YAML::Node node = walk(sweep, sweep.vary[k], root, sweep_model_path(sweep));

@@ -48,6 +48,9 @@ struct Sweep {
   std::string model_path;    // the model file, relative to the sweep file's folder when not absolute
   SourceLoc model_loc;
   std::vector<SweepVariable> vary;
+  /// `set:`: values every point takes (one value each), applied before the
+  /// points' `vary` values, as `mbfe sweep --set` would be.
+  std::vector<SweepVariable> set;
   bool zip = false;          // false: every combination (product); true: the i-th values together
   SweepSimulation simulation;
   std::vector<SweepCollect> collect;

@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -209,7 +210,12 @@ int cmd_sweep(const Args& args) {
   if (!out || out->empty()) throw UsageError("--out DIR is required: the folder of the points and the summary");
   const bool quiet = parsed.has("quiet");
   const std::string sweep_file = parsed.positional()[0];
-  const ir::Sweep sweep = frontend::load_sweep_file(sweep_file);
+  ir::Sweep sweep = frontend::load_sweep_file(sweep_file);
+  // A --set of a path the sweep file's `set:` names wins: it is the later word.
+  for (const ir::ModelOverride& o : model_overrides(parsed))
+    sweep.set.erase(std::remove_if(sweep.set.begin(), sweep.set.end(),
+                                   [&](const ir::SweepVariable& v) { return v.path == o.path; }),
+                    sweep.set.end());
   const std::string model_path = frontend::sweep_model_path(sweep);
   if (!fs::exists(model_path))
     throw ir::ModelError(sweep.source_path, sweep.model_loc, "model file '" + model_path + "' does not exist");

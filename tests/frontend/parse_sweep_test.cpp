@@ -1,5 +1,6 @@
-// Sweep files: the points they describe (product and zip, ranges, templates),
-// the model file of a point, and bad files refused at their file:line:col.
+// Sweep files: the points they describe (product and zip, ranges, templates,
+// values set for every point), the model file of a point, and bad files
+// refused at their file:line:col.
 #include "frontend/parse_sweep.h"
 
 #include <gtest/gtest.h>
@@ -68,6 +69,22 @@ TEST(ParseSweep, ZipTakesTheIthValuesTogether) {
   EXPECT_EQ(m.bodies[1].inertia, 0.3);
 }
 
+TEST(ParseSweep, SetGivesEveryPointTheSameValueBeforeItsOwn) {
+  const ir::Sweep s = parse_sweep_text(sweep_text("  - {path: bodies.arm.mass, values: [1, 2]}\n",
+                                                  "set: {bodies.arm.inertia: 0.7, bodies.cart.joint.motion: \"5*t\"}\n"),
+                                       "s.yaml");
+  ASSERT_EQ(s.points(), 2);
+  ASSERT_EQ(s.set.size(), 2u);
+  EXPECT_EQ(s.set[0].path, "bodies.arm.inertia");
+  check_sweep_paths(s, kModel);
+  for (long i = 0; i < 2; ++i) {
+    const ir::Model m = parse_model_text(point_model_text(s, kModel, i), "p.yaml");
+    EXPECT_EQ(m.bodies[1].mass, 1.0 + static_cast<double>(i));  // varied
+    EXPECT_EQ(m.bodies[1].inertia, 0.7);                         // set
+    EXPECT_EQ(m.bodies[0].joint.motion->evaluate(2.0), 10.0);
+  }
+}
+
 void expect_error(const std::string& text, const std::string& where, const std::string& what, bool paths = false) {
   try {
     const ir::Sweep s = parse_sweep_text(text, "s.yaml");
@@ -99,6 +116,12 @@ TEST(ParseSweep, BadFilesAreRefusedWhereTheyAreWrong) {
   expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "collect:\n  - {name: a, column: x, stat: median}\n"),
                "6:32", "expected one of max, min, absmax, mean, rms, initial, final");
   expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "speed: 3\n"), "5:1", "speed");
+  expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "set: {bodies.arm.mas: 3}\n"), "5:7",
+               "path 'bodies.arm.mas': 'arm' has no key 'mas'", true);
+  expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "set: {bodies.arm.mass: 3}\n"), "5:7",
+               "set: path 'bodies.arm.mass' is also varied");
+  expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "set: {bodies.arm.inertia: [1, 2]}\n"), "5:27",
+               "set: bodies.arm.inertia: expected a number or a string");
   // Two probes of one label would be two columns of one name.
   expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "simulate: {probes: [deck@5, deck@2, deck@5]}\n"),
                "5:37", "probes: 'deck@5' is given twice");

@@ -3,6 +3,7 @@
 // `mbfe simulate` of its model file), resumed, a failing point recorded while
 // the others go on, a bad sweep file refused, and the Slurm scripts of a dry run;
 // a resume after the simulate: or collect: block changed runs the points again,
+// the sweep file's set: in every point (a --set of the same path wins),
 // a sweep of a spatial model with a closed loop,
 // a message with non-ASCII text stays a result, devices and arguments a Slurm
 // script cannot carry are refused.
@@ -17,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "frontend/parse_model.h"
 #include "tests/support/cli.h"
 #include "tests/support/process.h"
 
@@ -75,6 +77,26 @@ TEST(Sweep, SixSpeedsLocallyRepeatableAndResumed) {
   ASSERT_EQ(again.status, 0) << again.all();
   EXPECT_NE(again.err.find("6 points, 6 already done, 0 to run"), std::string::npos) << again.err;
   EXPECT_EQ(fs::last_write_time(out + "/points/3/result.json"), stamp);
+}
+
+TEST(Sweep, TheSweepFilesSetReachesEveryPointAndACommandLineSetWins) {
+  TempDir dir;
+  const std::string file = (dir / "set.yaml").string();
+  spit(file, "sweep: set_masses\nmodel: " + source("models/double_pendulum.yaml") +
+                 "\nset: {bodies.link1.mass: 3.5}\n"
+                 "vary:\n  - {path: bodies.link2.mass, values: [1.5, 2.5]}\n"
+                 "simulate: {t_end: 0.01}\ncollect:\n  - {name: last, column: link1, stat: final}\n");
+  for (const std::string& extra : {std::string(), std::string(" --set bodies.link1.mass=4.5")}) {
+    SCOPED_TRACE(extra);
+    const std::string out = (dir / (extra.empty() ? "a" : "b")).string();
+    const CliRun r = run_cli("sweep " + shell_quote(file) + " --out " + shell_quote(out) + " --jobs 2" + extra);
+    ASSERT_EQ(r.status, 0) << r.all();
+    for (int i = 0; i < 2; ++i) {
+      const ir::Model m = frontend::load_model_file(out + "/points/" + std::to_string(i) + "/model.yaml");
+      EXPECT_EQ(m.bodies[0].mass, extra.empty() ? 3.5 : 4.5) << "point " << i;
+      EXPECT_EQ(m.bodies[1].mass, i == 0 ? 1.5 : 2.5) << "point " << i;
+    }
+  }
 }
 
 TEST(Sweep, SpatialLoopModelPointsRunAndCollect) {
