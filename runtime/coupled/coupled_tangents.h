@@ -40,12 +40,13 @@
 #include <vector>
 
 #include "runtime/coupled/coupled_dynamics.h"
+#include "runtime/coupled/state_operator.h"
 #include "runtime/linalg/modal_block_solver.h"
 #include "runtime/linalg/woodbury.h"
 
 namespace mbfe::runtime {
 
-class CoupledTangents {
+class CoupledTangents final : public StateOperator {
  public:
   /// The linearisation of `dynamics`' model at (t, q, qd) (n entries each;
   /// the driven coordinates are taken from their motion at t). `dynamics` is
@@ -57,11 +58,13 @@ class CoupledTangents {
   CoupledTangents(CoupledDynamics& dynamics, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
 
   /// Free coordinates (n_f): the rigid ones that are not driven, then every beam DOF.
-  int size() const { return nf_; }
+  int size() const override { return nf_; }
+  /// The free rigid coordinates: the first of the free coordinates.
+  int rigid_size() const { return nfb_; }
   /// Their indices in [q_b; q_c], ascending.
   const std::vector<int>& free_coordinates() const { return free_; }
   /// Driven coordinates left out: each is a zero pair of the full A.
-  int num_driven() const { return num_driven_; }
+  int num_driven() const override { return num_driven_; }
 
   /// y = M x, C_t x, K_t x over the free coordinates (n_f entries each).
   void apply_mass(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
@@ -71,18 +74,28 @@ class CoupledTangents {
   void solve_mass(const Eigen::VectorXd& r, Eigen::VectorXd& x) const;
 
   /// out = A in (2 n_f entries each, [z; z']).
-  void apply_state_matrix(const double* in, double* out) const;
+  void apply_state_matrix(const double* in, double* out) const override;
 
   /// Factors S = sigma^2 M + sigma C_t + K_t for solve_shifted (sigma in 1/s).
   /// @throws std::runtime_error when S is singular (sigma an eigenvalue: a
   ///         zero mode for sigma = 0).
-  void factorize_shifted(double sigma);
-  double shift() const { return sigma_; }
+  void factorize_shifted(double sigma) override;
+  double shift() const override { return sigma_; }
   /// out = (A - sigma I)^-1 in, sigma of the last factorize_shifted.
-  void solve_shifted(const double* in, double* out) const;
+  void solve_shifted(const double* in, double* out) const override;
 
   /// A as a dense matrix (2 n_f square; small models and tests).
-  Eigen::MatrixXd dense_state_matrix() const;
+  Eigen::MatrixXd dense_state_matrix() const override;
+
+  /// M, C_t and K_t without the structures' parts (the rigid block, the
+  /// beams outside structures, the force elements), over the free
+  /// coordinates: what a projection on a structure's modes adds to the
+  /// structures' own modal terms (truncated_tangents.h).
+  const Eigen::SparseMatrix<double>& mass_without_structures() const { return mass_; }
+  const Eigen::SparseMatrix<double>& damping_without_structures() const { return damping_; }
+  const Eigen::SparseMatrix<double>& stiffness_without_structures() const { return stiffness_; }
+  /// The model the tangents are of.
+  const CoupledModel& model() const { return model_; }
 
 
  private:

@@ -53,7 +53,7 @@ constexpr double kSingularShiftRel = 1e-9;
 // (unbalanced, the vehicle's fastest pair moved by 2e-4 |lambda|).
 struct StateProduct {
   using Scalar = double;
-  const CoupledTangents* tangents;
+  const StateOperator* tangents;
   double s = 1.0;
   mutable Eigen::VectorXd scaled;
   Eigen::Index rows() const { return 2 * tangents->size(); }
@@ -69,7 +69,7 @@ struct StateProduct {
 
 struct ShiftedSolve {
   using Scalar = double;
-  CoupledTangents* tangents;
+  StateOperator* tangents;
   double s = 1.0;
   bool factored = false;  // at tangents->shift() already
   mutable Eigen::VectorXd scaled;
@@ -90,7 +90,7 @@ struct ShiftedSolve {
 
 // s = sqrt(|M^-1 K_t r| / |r|) for a fixed pseudo-random r: its norm is
 // dominated by the stiffest modes, so s is omega_max within a small factor.
-double balancing_scale(const CoupledTangents& tangents) {
+double balancing_scale(const StateOperator& tangents) {
   const int n = tangents.size();
   Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * n), y(2 * n);
   for (int i = 0; i < n; ++i) x[i] = 1.0 + 0.5 * std::sin(1.0 + i);  // fixed, no zero entry
@@ -111,7 +111,7 @@ std::vector<std::complex<double>> converged(Solver& solver, const char* end) {
   return {ev.data(), ev.data() + ev.size()};
 }
 
-StateSpectrum dense_tangent_spectrum(const CoupledTangents& tangents) {
+StateSpectrum dense_tangent_spectrum(const StateOperator& tangents) {
   Eigen::MatrixXd a = tangents.dense_state_matrix();
   // Balanced as linearized_spectrum does: rates in units of sqrt(max |A21|).
   const int nz = tangents.size();
@@ -125,7 +125,7 @@ StateSpectrum dense_tangent_spectrum(const CoupledTangents& tangents) {
 
 }  // namespace
 
-StateSpectrum tangent_spectrum(CoupledTangents& tangents, const TangentSpectrumOptions& options) {
+StateSpectrum tangent_spectrum(StateOperator& tangents, const TangentSpectrumOptions& options) {
   const int states = 2 * tangents.size();
   std::vector<std::complex<double>> ev;
   bool complete = true;

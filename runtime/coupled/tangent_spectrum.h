@@ -1,6 +1,8 @@
 // The eigenvalues of a coupled model linearised from its own tangents
-// (coupled_tangents.h): A = [[0, I], [-M^-1 K_t, -M^-1 C_t]] over the free
-// coordinates, and an exact zero pair for every driven coordinate.
+// (coupled_tangents.h), or from their projection on truncated structures'
+// kept modes (truncated_tangents.h): A = [[0, I], [-M^-1 K_t, -M^-1 C_t]]
+// over the free coordinates, and an exact zero pair for every driven
+// coordinate.
 //
 // Small models: A formed column by column (n_f products and solves) and the
 // balanced dense eigen-decomposition, every eigenvalue. Large models (the
@@ -28,6 +30,7 @@
 #include <vector>
 
 #include "runtime/coupled/coupled_tangents.h"
+#include "runtime/coupled/state_operator.h"
 #include "runtime/modal/state_spectrum.h"
 
 namespace mbfe::runtime {
@@ -58,7 +61,7 @@ struct TangentSpectrumOptions {
 /// factored at the last shift used.
 /// @throws std::runtime_error when the Arnoldi iteration does not converge
 ///         (the message says at which end).
-StateSpectrum tangent_spectrum(CoupledTangents& tangents, const TangentSpectrumOptions& options = {});
+StateSpectrum tangent_spectrum(StateOperator& tangents, const TangentSpectrumOptions& options = {});
 
 /// What fills the middle of a partial spectrum: the eigenvalues of `source`
 /// (the beams' own modes, as the model's adjustment leaves them) with Re <= 0
