@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "api/mbfe.h"
+#include "ir/model_error.h"
 #include "runtime/advisor/model_spectrum.h"
 #include "runtime/simulation/adjustment_estimate.h"
 #include "runtime/simulation/assembled_model.h"
@@ -98,6 +99,13 @@ int cmd_advise(const Args& args) {
   announce_model_warnings(given.ir());
   ir::Model ir = given.ir();
   bool any = false;
+  for (const ir::Beam& beam : ir.beams)
+    if (beam.adjustment.active() && beam.adjustment.policy == ir::AdjustmentPolicy::kTruncate)
+      throw ir::ModelError(ir.source_path, beam.adjustment.loc,
+                           "beam '" + beam.name + "' has policy truncate: mbfe advise chooses an adjustment's "
+                           "omega_limit by its estimated change of the structure's compliance, and a truncation, "
+                           "which removes modes, has no such estimate (docs/catenary.md, \"Modal truncation\", "
+                           "measures its accuracy; mbfe stability gives its stable steps)");
   for (ir::Beam& beam : ir.beams)
     if (beam.adjustment.active()) {
       beam.adjustment.omega_limit_auto = true;

@@ -10,10 +10,12 @@
 #include "runtime/coupled/coupled_tangents.h"
 #include "runtime/coupled/linearization.h"
 #include "runtime/coupled/tangent_spectrum.h"
+#include "runtime/coupled/truncated_tangents.h"
 #include "runtime/errors/multibody_errors.h"
 #include "runtime/errors/invalid_input.h"
 #include "runtime/multibody/loop_systems.h"
 #include "runtime/multibody/tangent_linearization.h"
+#include "runtime/structure/low_rank_structure.h"
 #include "runtime/simulation/assembled_model.h"
 #include "runtime/simulation/settled_state.h"
 #include "runtime/simulation/static_start.h"
@@ -131,11 +133,55 @@ ModelSpectrum quaternion_spectrum(const AssembledModel& model, const Eigen::Vect
       linearize);
 }
 
+bool truncated_beams(const CoupledDynamics& dynamics) {
+  for (const auto& st : dynamics.model().structures())
+    if (st->truncated()) return true;
+  return false;
+}
+
+// A coupled model with truncated beams (policy truncate), linearised as it is
+// integrated: in the kept modes of each beam, from the run's initial state,
+// the beams' coordinates projected on those modes as the run projects them.
+ModelSpectrum truncated_spectrum(CoupledDynamics& dynamics, Eigen::VectorXd q, Eigen::VectorXd qd) {
+  const int nb = dynamics.nb();
+  for (const auto& st : dynamics.model().structures()) {
+    const LowRankStructure::Range& r = st->ranges().front();
+    for (Eigen::VectorXd* x : {&q, &qd}) {
+      auto block = x->segment(nb + r.offset, r.size);
+      const Eigen::VectorXd eta = st->phi().transpose() * (st->M() * block);
+      block = st->phi() * eta;
+    }
+  }
+  CoupledTangents tangents(dynamics, 0.0, q, qd);
+  TruncatedTangents reduced(tangents);
+  ModelSpectrum out = from_linearization(tangent_spectrum(reduced), reduced.size());
+  // Between the two ends of a large spectrum: the kept modes alone, each
+  // the roots of m s^2 + c s + k (as the nodal path takes the beams' own).
+  std::vector<std::complex<double>> modes;
+  const Eigen::Index rigid = reduced.size() - static_cast<Eigen::Index>(reduced.modal_size());
+  for (Eigen::Index i = rigid; i < reduced.size(); ++i) {
+    const double m = reduced.mass()(i, i), c = reduced.damping()(i, i), k = reduced.stiffness()(i, i);
+    const std::complex<double> root = std::sqrt(std::complex<double>(c * c - 4.0 * m * k, 0.0));
+    modes.push_back((-c + root) / (2.0 * m));
+    modes.push_back((-c - root) / (2.0 * m));
+  }
+  const std::vector<std::complex<double>> middle =
+      middle_of_spectrum(out.full, spectrum_from_eigenvalues(std::move(modes)));
+  if (middle.empty()) return out;
+  std::vector<std::complex<double>> limiting = out.limiting.eigenvalues;
+  limiting.insert(limiting.end(), middle.begin(), middle.end());
+  out.limiting = spectrum_from_eigenvalues(std::move(limiting));
+  out.limiting.complete = false;
+  out.middle_from_beams = static_cast<int>(middle.size());
+  return out;
+}
+
 }  // namespace
 
 ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
   adjusted = model.resolve_adjusted(adjusted);
-  model.refuse_truncation(adjusted, "the stability advisor linearises the nodal model");
+  if (model.kind() != ModelKind::kCoupled)
+    model.refuse_truncation(adjusted, "the stability advisor linearises the nodal model");
   // Linearised where a run starts: the static equilibrium when the model asks for it.
   const bool static_start = model.ir().initial.static_start;
   Eigen::VectorXd q0, qd0;
@@ -181,6 +227,11 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
                              " (each beam's own spectrum: mbfe modal; runs: an implicit integrator needs no limit)");
         dynamics->impose_motion(0.0, q0, qd0);
         if (static_start) coupled_static_start(model.ir(), dynamics, q0, qd0);
+        if (truncated_beams(*dynamics)) {
+          if (!from_tangents || !dynamics->model().splittable())
+            model.refuse_truncation(true, "this model cannot be split");
+          return truncated_spectrum(*dynamics, q0, qd0);
+        }
         if (from_tangents) {
           CoupledTangents tangents(*dynamics, 0.0, q0, qd0);
           ModelSpectrum out = from_linearization(tangent_spectrum(tangents), n_coupled);

@@ -74,6 +74,12 @@ TEST(Advise, RefusesWhatItCannotAdvise) {
                                " --tolerance 0.01");
   EXPECT_EQ(rigid.status, 2);
   EXPECT_NE(rigid.err.find("has no beam with an active adjustment block"), std::string::npos) << rigid.err;
+  // A truncation removes modes: no compliance estimate to choose its limit by.
+  const CliRun truncated =
+      run_cli("advise " + shell_quote(kModel) + " --tolerance 0.01 --set beams.deck.adjustment.policy=truncate");
+  EXPECT_EQ(truncated.status, 2);
+  EXPECT_NE(truncated.err.find("bridge_moving_mass.yaml:35:"), std::string::npos) << truncated.err;
+  EXPECT_NE(truncated.err.find("beam 'deck' has policy truncate"), std::string::npos) << truncated.err;
 }
 
 }  // namespace

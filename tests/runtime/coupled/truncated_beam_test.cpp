@@ -4,7 +4,9 @@
 // xi'' = Phi_T^T f - c_j xi' - omega_j^2 xi. Checked against the closed-form
 // step response of those modes (a dense eigensolver of the test's own), and
 // against the original model when the truncation keeps every mode; the paths
-// that cannot integrate a truncated beam refuse it.
+// that cannot integrate a truncated beam refuse it; the stability advisor's
+// linearisation in the kept modes (TruncatedTangents) against the uncoupled
+// roots and against the nodal tangents projected here.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -12,10 +14,14 @@
 #include <cmath>
 #include <complex>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "api/mbfe.h"
 #include "runtime/advisor/model_spectrum.h"
+#include "runtime/coupled/coupled_tangents.h"
+#include "runtime/coupled/truncated_tangents.h"
+#include "runtime/structure/low_rank_structure.h"
 #include "runtime/errors/invalid_input.h"
 #include "runtime/integrators/integrator_spec.h"
 #include "tests/support/recorded_rows.h"
@@ -169,9 +175,89 @@ TEST(TruncatedBeam, PathsThatCannotIntegrateItRefuse) {
   } catch (const runtime::InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("policy truncate"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(runtime::model_spectrum(model.assembled(), true), runtime::InvalidInput);
   // The original model stays available.
   EXPECT_NO_THROW(runtime::model_spectrum(model.assembled(), false));
+}
+
+TEST(TruncatedBeam, TheAdvisorLinearisesTheKeptModes) {
+  // The cart on its spring (m 1 kg, k 100 N/m, c 1 N s/m) and the beam's four
+  // kept modes (Rayleigh c_j = alpha + beta omega_j^2) are uncoupled: the
+  // truncated model's spectrum is their roots, ten in all, and nothing of the
+  // removed modes (the fastest root is the fourth mode's, 253 rad/s).
+  // Dense eigensolvers on both sides, matrices of 1e5 at most: 1e-9.
+  constexpr double kRootTol = 1e-9;  // relative to |lambda|
+  const Model model = Model::parse(simple_beam("{omega_limit: 300.0, policy: truncate}"), "truncated.yaml");
+  const runtime::BeamSystem& beam = model.assembled().beams().beams.front().system;
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(Eigen::MatrixXd(beam.K),
+                                                                        Eigen::MatrixXd(beam.M));
+  std::vector<std::complex<double>> expected;
+  auto roots = [&](double m, double c, double k) {
+    const std::complex<double> d = std::sqrt(std::complex<double>(c * c - 4.0 * m * k));
+    expected.push_back((-c + d) / (2.0 * m));
+    expected.push_back((-c - d) / (2.0 * m));
+  };
+  roots(1.0, 1.0, 100.0);
+  for (int j = 0; j < 4; ++j) {
+    const double k = modes.eigenvalues()[j];
+    roots(1.0, beam.rayleigh_alpha + beam.rayleigh_beta * k, k);
+  }
+  const runtime::ModelSpectrum s = runtime::model_spectrum(model.assembled(), true);
+  EXPECT_EQ(s.coordinates, 5);  // the cart and four modal amplitudes
+  ASSERT_EQ(s.full.eigenvalues.size(), expected.size());
+  EXPECT_TRUE(s.full.complete);
+  for (const std::complex<double>& e : expected) {
+    double nearest = INFINITY;
+    for (const std::complex<double>& l : s.full.eigenvalues) nearest = std::min(nearest, std::abs(l - e));
+    EXPECT_LT(nearest, kRootTol * std::abs(e)) << e;
+  }
+}
+
+TEST(TruncatedBeam, TheProjectedTangentsAreTheNodalOnesOnTheKeptModes) {
+  // The two-span catenary with both wires truncated at 1000 rad/s: contact,
+  // droppers and the pantograph couple the wires. The reduced matrices from
+  // the closed-form modal terms and the force elements' rows of Phi_L,
+  // against T^T X T formed here by the nodal tangents' own products (the
+  // structures' low-rank operators applied to each kept mode).
+  constexpr double kProjectionTol = 1e-9;  // relative to the largest entry
+  const Model model =
+      Model::parse(test::with_wire_adjustment("{omega_limit: 1000.0, policy: truncate}"), "two_span.yaml");
+  const std::shared_ptr<runtime::CoupledDynamics> dynamics = model.assembled().make_dynamics(true);
+  Eigen::VectorXd q, qd;
+  model.assembled().initial_coordinates(q, qd);
+  dynamics->impose_motion(0.0, q, qd);
+  const runtime::CoupledTangents tangents(*dynamics, 0.0, q, qd);
+  const runtime::TruncatedTangents reduced(tangents);
+  // T: the free rigid coordinates, then each wire's kept modes at its rows.
+  const int rigid = tangents.rigid_size();
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(tangents.size(), reduced.size());
+  T.topLeftCorner(rigid, rigid).setIdentity();
+  int column = rigid;
+  for (const auto& st : dynamics->model().structures()) {
+    const runtime::LowRankStructure::Range& r = st->ranges().front();
+    T.block(rigid + r.offset, column, r.size, st->rank()) = st->phi();
+    column += st->rank();
+  }
+  ASSERT_EQ(column, reduced.size());
+  ASSERT_GT(reduced.modal_size(), 50);  // both wires, tens of modes each (84)
+  Eigen::MatrixXd m(reduced.size(), reduced.size()), c = m, k = m;
+  Eigen::VectorXd y;
+  for (int j = 0; j < reduced.size(); ++j) {
+    const Eigen::VectorXd t = T.col(j);
+    tangents.apply_mass(t, y);
+    m.col(j) = T.transpose() * y;
+    tangents.apply_damping(t, y);
+    c.col(j) = T.transpose() * y;
+    tangents.apply_stiffness(t, y);
+    k.col(j) = T.transpose() * y;
+  }
+  for (auto [got, want, name] : {std::tuple{&reduced.mass(), &m, "M"}, std::tuple{&reduced.damping(), &c, "C"},
+                                 std::tuple{&reduced.stiffness(), &k, "K"}}) {
+    const double scale = want->cwiseAbs().maxCoeff();
+    EXPECT_LT((*got - *want).cwiseAbs().maxCoeff(), kProjectionTol * scale) << name;
+  }
+  // The contact and the droppers couple the two wires' modes.
+  const int messenger_modes = dynamics->model().structures().front()->rank();
+  EXPECT_GT(reduced.stiffness().block(rigid, rigid + messenger_modes, messenger_modes, 4).cwiseAbs().maxCoeff(), 0.0);
 }
 
 }  // namespace
