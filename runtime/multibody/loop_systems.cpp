@@ -95,10 +95,12 @@ void LoopPartitionedSystem::close(double t, const Eigen::VectorXd& y) {
   lu_.compute(jd_);
   // v = B v_u + w: B's independent rows the identity, its dependent rows
   // -J_d^-1 J_u; w the drives' share, J_d w_d = nu(t), zero without drives.
-  const Eigen::MatrixXd dependent_rows = -lu_.solve(ju_);
   b_.setZero(nv_, nu);
-  for (int k = 0; k < nu; ++k) b_(part_.independent[k], k) = 1.0;
-  for (int k = 0; k < nc_; ++k) b_.row(part_.dependent[k]) = dependent_rows.row(k);
+  if (nu > 0) {  // a solve with no right-hand side reads a null pointer in Eigen
+    const Eigen::MatrixXd dependent_rows = -lu_.solve(ju_);
+    for (int k = 0; k < nu; ++k) b_(part_.independent[k], k) = 1.0;
+    for (int k = 0; k < nc_; ++k) b_.row(part_.dependent[k]) = dependent_rows.row(k);
+  }
   v_ = b_ * y.tail(nu);
   if (closure_.driven_rows() > 0) {
     closure_.velocity_target(t, nu_);
