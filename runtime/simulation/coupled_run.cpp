@@ -156,8 +156,17 @@ class CoupledRun final : public ModelRun {
     // An unstable beam mode drags the contacts along; catch it while the Newton
     // closure can still follow (a state 1e4 times the largest seen).
     options_.divergence_factor = 1.0e4;
-    variant_ = std::string(adjusted_ ? "adjusted" : "original") + " damping, " +
-               (index3_ ? "index-3" : augmented ? "augmented" : "partitioned") + " formulation" +
+    // What the beams are: a truncation (policy truncate) is no adjustment of damping.
+    int truncated_beams = 0, adjusted_beams = 0;
+    for (const ir::Beam& b : model.ir().beams) {
+      if (!b.adjustment.active()) continue;
+      ++(b.adjustment.policy == ir::AdjustmentPolicy::kTruncate ? truncated_beams : adjusted_beams);
+    }
+    const std::string beams = !adjusted_              ? "original damping"
+                              : truncated_beams == 0 ? "adjusted damping"
+                              : adjusted_beams == 0  ? "truncated modes"
+                                                     : "adjusted damping and truncated modes";
+    variant_ = beams + ", " + (index3_ ? "index-3" : augmented ? "augmented" : "partitioned") + " formulation" +
                (split_ ? ", low-rank beams in split coordinates" : "");
     if (adjusted_)
       for (const JoinedStructure& s : model.joined())

@@ -107,6 +107,7 @@ TEST(TruncatedBeam, FollowsTheClosedFormResponseOfItsKeptModes) {
   StateRows rows;
   const runtime::SimulationReport report = model.simulate(rk4_request(kStep, 0.3), rows);
   ASSERT_NE(report.variant.find("split coordinates"), std::string::npos) << report.variant;
+  EXPECT_EQ(report.variant.rfind("truncated modes, ", 0), 0u) << report.variant;
   // RK4 at h omega <= 0.025 over 3,000 steps: 2e-11 of the deflection
   // measured; the removed modes make 6e-4 of it (checked below).
   constexpr double kClosedFormTol = 1e-7;
