@@ -15,7 +15,7 @@ namespace {
 
 using namespace mbfe;
 
-constexpr double kCap = 1500.0;  // rad/s, the ten-span models' omega_limit
+constexpr double kCap = 1500.0;  // rad/s, the cap the ten-span models were adjusted with (kept for comparison)
 
 const runtime::BeamSystem& messenger() {
   static const ir::Model model =

@@ -119,7 +119,8 @@ TruncatedTangents::TruncatedTangents(const CoupledTangents& tangents) : num_driv
     }
   }
   // No force element has mass: M_r is the rigid block and the modal masses.
-  if (!m_.topRightCorner(rigid_, r - rigid_).isZero(0.0) || !m_.bottomRightCorner(r - rigid_, r - rigid_).isDiagonal(0.0))
+  if (!m_.topRightCorner(rigid_, r - rigid_).isZero(0.0) ||
+      !m_.bottomRightCorner(r - rigid_, r - rigid_).isDiagonal(0.0))
     throw std::logic_error("TruncatedTangents: the reduced mass matrix is not block diagonal");
   rigid_mass_lu_.compute(m_.topLeftCorner(rigid_, rigid_));
   modal_mass_ = m_.diagonal().tail(r - rigid_);
