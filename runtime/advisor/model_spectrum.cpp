@@ -139,6 +139,12 @@ bool truncated_beams(const CoupledDynamics& dynamics) {
   return false;
 }
 
+bool every_beam_truncated(const ir::Model& model) {
+  for (const ir::Beam& b : model.beams)
+    if (!b.adjustment.active() || b.adjustment.policy != ir::AdjustmentPolicy::kTruncate) return false;
+  return true;
+}
+
 // A coupled model with truncated beams (policy truncate), linearised as it is
 // integrated: in the kept modes of each beam, from the run's initial state,
 // the beams' coordinates projected on those modes as the run projects them.
@@ -230,6 +236,9 @@ ModelSpectrum model_spectrum(const AssembledModel& model, bool adjusted) {
         if (truncated_beams(*dynamics)) {
           if (!from_tangents || !dynamics->model().splittable())
             model.refuse_truncation(true, "this model cannot be split");
+          if (!every_beam_truncated(model.ir()))
+            model.refuse_truncation(true, "the stability advisor linearises truncated beams in their kept modes "
+                                          "only when every beam of the model is truncated");
           return truncated_spectrum(*dynamics, q0, qd0);
         }
         if (from_tangents) {

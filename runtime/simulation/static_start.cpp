@@ -319,6 +319,10 @@ void loop_static_state(const ir::Model& model, LoopPartitionedSystem& system, Ei
   v.setZero(c.nv);
   Eigen::VectorXd y = system.state_of(0.0, q, v);
   const std::vector<int> independent = system.partition().independent;
+  if (independent.empty()) {  // the loops and drives fix every coordinate: nothing to solve
+    system.full_state(0.0, y, q, v);
+    return;
+  }
   std::vector<int> entries(independent.size());
   for (std::size_t k = 0; k < entries.size(); ++k) entries[k] = static_cast<int>(k);
   Eigen::VectorXd v_closed;

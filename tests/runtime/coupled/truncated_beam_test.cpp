@@ -213,6 +213,23 @@ TEST(TruncatedBeam, TheAdvisorLinearisesTheKeptModes) {
   }
 }
 
+TEST(TruncatedBeam, TheAdvisorRefusesATruncatedBeamBesideANodalOne) {
+  // The two-span catenary with only its messenger truncated: the kept-mode
+  // projection needs every beam truncated; the refusal is an input error at
+  // the adjustment block (exit 2), not an internal one.
+  std::string text = test::kTwoSpanCatenary;
+  const std::string damping = "damping: {rayleigh: {alpha: 0.0, beta: 1.0e-4}}";
+  text.insert(text.find(damping) + damping.size(), "\n    adjustment: {omega_limit: 1000.0, policy: truncate}");
+  const Model model = Model::parse(text, "half_truncated.yaml");
+  try {
+    runtime::model_spectrum(model.assembled(), true);
+    ADD_FAILURE() << "the advisor linearised a model with a truncated and a nodal beam";
+  } catch (const runtime::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("only when every beam of the model is truncated"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(TruncatedBeam, TheProjectedTangentsAreTheNodalOnesOnTheKeptModes) {
   // The two-span catenary with both wires truncated at 1000 rad/s: contact,
   // droppers and the pantograph couple the wires. The reduced matrices from
