@@ -167,13 +167,16 @@ def model_text(p, spans, kmh, name, table_path, pantograph=None, pantographs=1, 
         w("  and a two-mass pantograph running along it at %g km/h, after the EN 50318:2002 reference" % kmh)
         w("  model as the open literature reproduces it (docs/validation-en50318.md says which values are")
         w("  sourced and which assumed). Static start; the contact force is force_strip.")
-        if truncate:
+        if truncate and truncate == p.get("truncation", {}).get("omega_limit"):
+            # What docs/catenary.md measured of the table's truncation, not of any other.
             w("  The wires are truncated at %s rad/s (%d Hz, policy truncate): of the ways of running it"
               % (number(truncate), round(truncate / (2 * math.pi))))
             w("  compared in docs/catenary.md (\"Modal truncation\"), the fastest that keeps every EN 50318")
             w("  statistic within 0.3 % of the mean contact force of the original model's implicit run")
             w("  (0.21 % at 300 km/h; the cap at 1500 rad/s: 0.30 %, 1.5 times slower). The original model:")
             w("  --adjust off --integrator generalized_alpha --step %s." % number(p["step"]))
+        elif truncate:
+            w("  The wires are truncated at %s rad/s (policy truncate)." % number(truncate))
     else:
         w("  and %s %s pantograph%s running along it at %g km/h%s, after the EN 50318:2002 reference"
           % ("two" if second is not None else "a", kind, "s" if second is not None else "", kmh,
@@ -238,8 +241,9 @@ def model_text(p, spans, kmh, name, table_path, pantograph=None, pantographs=1, 
           % (number(con["stiffness"]), number(con["damping"])))
     w("initial: {static: true}")
     if truncate:
+        explicit = adj or {"integrator": "rk4", "step": 1.0e-3}  # the step the table's adjustment runs at
         w("simulation: {integrator: %s, step: %s, t_end: %s}   # truncated; the original: --adjust off --integrator generalized_alpha --step %s"
-          % (adj["integrator"], number(adj["step"]), number(t_end), number(p["step"])))
+          % (explicit["integrator"], number(explicit["step"]), number(t_end), number(p["step"])))
     elif adjusted:
         w("simulation: {integrator: %s, step: %s, t_end: %s}   # adjusted; the original: --adjust off --integrator generalized_alpha --step %s"
           % (adj["integrator"], number(adj["step"]), number(t_end), number(p["step"])))

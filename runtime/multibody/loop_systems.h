@@ -49,8 +49,10 @@ class LoopSystem : public OdeSystem {
   /// A consistent state from (q, v) (nq, nv): the dependent coordinates of
   /// the partition chosen at q (coordinates with a non-zero velocity kept
   /// independent where J allows) closed by Newton (the independent ones kept)
-  /// and the dependent velocities solved from J v = 0; quaternions
-  /// renormalised first. q and v are overwritten with it.
+  /// and the dependent velocities solved from J v = nu (0 in the loops'
+  /// rows, the motion's rate in a drive's); quaternions renormalised and the
+  /// driven coordinates set to their motion first. q and v are overwritten
+  /// with it.
   /// @throws NewtonClosureError, SingularConstraintError.
   void make_consistent(double t, Eigen::VectorXd& q, Eigen::VectorXd& v) const;
 
@@ -116,7 +118,7 @@ class LoopAugmentedSystem final : public LoopSystem {
   int size() const override { return nq_ + nv_; }
   /// @throws SingularConstraintError, SingularMassMatrixError.
   void rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) override;
-  /// Projects q onto Phi = 0 and v onto J v = 0. @throws NewtonClosureError.
+  /// Projects q onto Phi = 0 and v onto J v = nu. @throws NewtonClosureError.
   void after_step(double t, Eigen::VectorXd& y) override;
   std::string name(int i) const override;
   Eigen::VectorXd state_of(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v) override;

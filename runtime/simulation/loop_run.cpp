@@ -48,7 +48,7 @@ class LoopRun final : public ModelRun {
     } catch (const ContactError& e) {
       throw InvalidInput(model.ir().source_path + ": inconsistent initial state: " + e.what());
     }
-    // Velocities left at zero (not given) are completed from J v = 0 without
+    // Velocities left at zero (not given) are completed from J v = nu without
     // a word; a velocity given and changed is announced.
     // A static start moves the positions on purpose: nothing to announce.
     const std::string moved = static_start ? "" : moves(q0, q, c.position_columns, c.position_units, false);

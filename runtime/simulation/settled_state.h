@@ -16,12 +16,14 @@
 
 namespace mbfe::runtime {
 
-/// The equilibrium on the loops that the motion from (q, v), damped,
-/// settles into: q and v are overwritten with it (v zero but for the driven
-/// joints). omega_min and omega_max are the scales of the model's modes (the
-/// moduli of its linearisation's eigenvalues): the damping is 2 omega_min and
-/// the step 0.5 / omega_max. Returns false (q, v unchanged) when it does not
-/// settle or Newton does not converge from there.
+/// The equilibrium on the loops that the motion released at rest from q,
+/// damped, settles into: q and v are overwritten with it (v zero but for the
+/// driven joints). omega_min and omega_max are the scales of the model's
+/// modes (the moduli of its linearisation's eigenvalues): the damping is
+/// 2 omega_min and the step 0.5 / omega_max. Newton then makes the rest
+/// exact; where it does not converge (an equilibrium that is not isolated)
+/// the rested state is kept. Returns false (q, v unchanged) when the motion
+/// does not come to rest.
 bool loop_settled_state(const ir::Model& model, LoopPartitionedSystem& system, double omega_min, double omega_max,
                         Eigen::VectorXd& q, Eigen::VectorXd& v);
 
