@@ -15,10 +15,10 @@
 #include "runtime/errors/invalid_input.h"
 #include "runtime/multibody/loop_systems.h"
 #include "runtime/multibody/tangent_linearization.h"
-#include "runtime/structure/low_rank_structure.h"
 #include "runtime/simulation/assembled_model.h"
 #include "runtime/simulation/settled_state.h"
 #include "runtime/simulation/static_start.h"
+#include "runtime/structure/low_rank_structure.h"
 
 namespace mbfe::runtime {
 
