@@ -163,16 +163,16 @@ ModelSpectrum truncated_spectrum(CoupledDynamics& dynamics, Eigen::VectorXd q, E
   ModelSpectrum out = from_linearization(tangent_spectrum(reduced), reduced.size());
   // Between the two ends of a large spectrum: the kept modes alone, each
   // the roots of m s^2 + c s + k (as the nodal path takes the beams' own).
-  std::vector<std::complex<double>> modes;
+  std::vector<ModalDynamics> modes;
   const Eigen::Index rigid = reduced.size() - static_cast<Eigen::Index>(reduced.modal_size());
   for (Eigen::Index i = rigid; i < reduced.size(); ++i) {
-    const double m = reduced.mass()(i, i), c = reduced.damping()(i, i), k = reduced.stiffness()(i, i);
-    const std::complex<double> root = std::sqrt(std::complex<double>(c * c - 4.0 * m * k, 0.0));
-    modes.push_back((-c + root) / (2.0 * m));
-    modes.push_back((-c - root) / (2.0 * m));
+    ModalDynamics mode;
+    mode.m = reduced.mass()(i, i);
+    mode.c = reduced.damping()(i, i);
+    mode.k = reduced.stiffness()(i, i);
+    modes.push_back(mode);
   }
-  const std::vector<std::complex<double>> middle =
-      middle_of_spectrum(out.full, spectrum_from_eigenvalues(std::move(modes)));
+  const std::vector<std::complex<double>> middle = middle_of_spectrum(out.full, state_spectrum(modes));
   if (middle.empty()) return out;
   std::vector<std::complex<double>> limiting = out.limiting.eigenvalues;
   limiting.insert(limiting.end(), middle.begin(), middle.end());
