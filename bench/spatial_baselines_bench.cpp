@@ -38,6 +38,7 @@
 #include "generator/emit/generate_solver.h"
 #include "ir/coordinate_layout.h"
 #include "runtime/abi/mbfe_model_abi.h"
+#include "tests/reference/spatial_baseline.h"
 #include "tests/support/random_spatial_tree.h"
 #ifdef MBFE_HAVE_MUJOCO
 #include "tests/reference/mujoco_tree.h"
