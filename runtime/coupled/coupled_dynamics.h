@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "runtime/coupled/contact_constraints.h"
@@ -208,6 +209,9 @@ class CoupledDynamics {
   // their [eta; zeta] start, and per structure its place among them or -1.
   std::vector<int> split_structure_, split_offset_, split_of_structure_;
   int split_size_ = 0;
+  // The q_c ranges of beams that are not split (offset, size): an evaluation
+  // in split coordinates copies these whole and only the read DOFs of the rest.
+  std::vector<std::pair<int, int>> unsplit_ranges_;
   // The split structures' work of an evaluation on two threads, when they
   // are large enough for it to pay (split_low_rank_beams).
   std::unique_ptr<StructureLanes> lanes_;

@@ -3,6 +3,7 @@
 // nodal and split coordinates, and their kept modes' accelerations.
 #include "runtime/coupled/coupled_dynamics.h"
 
+#include "runtime/linalg/row_products.h"
 #include "runtime/platform/thread_budget.h"
 
 namespace mbfe::runtime {
@@ -31,6 +32,9 @@ bool CoupledDynamics::split_low_rank_beams() {
   }
   split_size_ = size;
   data_.split_acc.setZero(size);
+  for (const CoupledBeam& b : model_->beams())
+    if (b.structure < 0 || split_of_structure_[static_cast<std::size_t>(b.structure)] < 0)
+      unsplit_ranges_.emplace_back(b.offset, b.mesh.num_free);
   // Two lanes pay when each split structure's share of an evaluation (a row
   // of Phi_L per DOF the forces read, a sparse solve) outweighs handing it
   // to another thread, tens of microseconds on a busy host.
@@ -101,11 +105,14 @@ void CoupledDynamics::split_accelerations(int k, const Eigen::Ref<const Eigen::V
       st.solve_base(ws.r, ws.base_solve, ws);
       a += ws.base_solve / mu_m;
     }
+    ws.rows.clear();
+    ws.row_x.clear();
     for (Eigen::Index i = 0; i < loads.size(); ++i)
       if (loads[i] != 0.0) {
-        const double* row = st.phi().data() + i * m;  // row-major: row i is contiguous
-        for (Eigen::Index j = 0; j < m; ++j) g[j] += loads[i] * row[j];
+        ws.rows.push_back(static_cast<int>(i));
+        ws.row_x.push_back(loads[i]);
       }
+    add_rows(st.phi().data(), m, ws.rows.data(), ws.row_x.data(), static_cast<int>(ws.rows.size()), g.data());
   }
   const auto eta = split.e.segment(o, m), zeta = split.e.segment(o + m, m);
   const auto etad = split.ed.segment(o, m), zetad = split.ed.segment(o + m, m);

@@ -3,6 +3,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "runtime/linalg/row_products.h"
 #include "runtime/linalg/sparse_ldlt_solve.h"
 
 namespace mbfe::runtime {
@@ -86,6 +87,9 @@ LowRankStructure::Workspace LowRankStructure::make_workspace() const {
   ws.modal_g.setZero(m);
   ws.three.setZero(n, 4);
   ws.projected3.setZero(m, 4);
+  for (auto* v : {&ws.row_x, &ws.row_v}) v->reserve(static_cast<std::size_t>(n));
+  ws.rows.reserve(static_cast<std::size_t>(n));
+  ws.row_listed.assign(static_cast<std::size_t>(n), 0);
   return ws;
 }
 
@@ -123,7 +127,7 @@ void LowRankStructure::add_internal_force(const double* qc, const double* vc, do
   if (rank() > 0) {
     ws.three.col(0).noalias() = M_ * ws.v;
     ws.three.col(1).noalias() = M_ * ws.x;
-    ws.projected3.leftCols(2).noalias() = phi_.transpose() * ws.three.leftCols(2);
+    transposed_product(phi_.data(), phi_.rows(), phi_.cols(), ws.three.data(), 2, ws.projected3.data());
     ws.modal = damping_.d.cwiseProduct(ws.projected3.col(0)) + stiffness_.d.cwiseProduct(ws.projected3.col(1));
     ws.bx.noalias() = phi_ * ws.modal;
     ws.a.noalias() += M_ * ws.bx;
@@ -174,7 +178,7 @@ void LowRankStructure::free_acceleration(const double* qc, const double* vc, con
     // for them, one for the sum.
     const int columns = uses_g_ && loaded ? 3 : 2;
     if (columns == 3) ws.three.col(2) = ws.r;
-    ws.projected3.leftCols(columns).noalias() = phi_.transpose() * ws.three.leftCols(columns);
+    transposed_product(phi_.data(), phi_.rows(), phi_.cols(), ws.three.data(), columns, ws.projected3.data());
     ws.modal = e_v_.cwiseProduct(ws.projected3.col(0)) + e_q_.cwiseProduct(ws.projected3.col(1));
     if (uses_g_) ws.modal += w_g_.cwiseProduct(columns == 3 ? Eigen::VectorXd(phi_p_ + ws.projected3.col(2)) : phi_p_);
   } else {
@@ -187,7 +191,7 @@ void LowRankStructure::free_acceleration(const double* qc, const double* vc, con
     if (loaded) ws.three.col(2) = ws.r;
     else ws.three.col(2).setZero();
     ws.three.col(3).noalias() = M_ * ws.a;
-    ws.projected3.noalias() = phi_.transpose() * ws.three;
+    transposed_product(phi_.data(), phi_.rows(), phi_.cols(), ws.three.data(), 4, ws.projected3.data());
     const Eigen::ArrayXd b = b_.array();
     ws.modal = (((phi_p_ + ws.projected3.col(2)).array() -
                  (damping_.mu * b + damping_.d.array()) * ws.projected3.col(0).array() -
@@ -229,7 +233,7 @@ void LowRankStructure::solve_mass(const Eigen::VectorXd& r, Eigen::VectorXd& x, 
     // As in free_acceleration: x = y + Phi_L (g / (mu_M b + d_M) - U^T y), y = B^-1 r / mu_M.
     ws.three.col(0) = r;
     ws.three.col(1).noalias() = M_ * x;
-    ws.projected3.leftCols(2).noalias() = phi_.transpose() * ws.three.leftCols(2);
+    transposed_product(phi_.data(), phi_.rows(), phi_.cols(), ws.three.data(), 2, ws.projected3.data());
     ws.modal = (ws.projected3.col(0).array() / (mass_.mu * b_.array() + mass_.d.array()) -
                 ws.projected3.col(1).array())
                    .matrix();

@@ -113,6 +113,12 @@ class LowRankStructure {
     Eigen::VectorXd x, v, r, a, bx, bv, base_solve, modal, modal_g;
     Eigen::VectorXd ldlt;  // the sparse solves' workspace
     Eigen::Matrix<double, Eigen::Dynamic, 4> three, projected3;
+    // Rows of Phi_L a split evaluation reads or loads, and their products
+    // (coupled/split_coordinates.cpp); at most one per DOF, and reserved
+    // for that many, so a step allocates nothing.
+    std::vector<int> rows;
+    std::vector<double> row_x, row_v;
+    std::vector<char> row_listed;  // per DOF: already in `rows`
   };
   Workspace make_workspace() const;
 
