@@ -1,5 +1,6 @@
 #include "runtime/coupled/split_beam_system.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace mbfe::runtime {
@@ -10,17 +11,63 @@ SplitBeamSystem::SplitBeamSystem(std::shared_ptr<CoupledDynamics> dyn) : Coupled
                                 "': split coordinates need a low-rank adjusted beam and no constraint contacts "
                                 "or joined structures");
   for (int i = 0; i < dyn_->nb(); ++i) independent_.independent.push_back(i);
+  // The entries of [q; e] a truncated beam leaves at 0: its q_c range and its zeta.
+  const int n = dyn_->n(), nb = dyn_->nb(), ne = dyn_->num_split_coordinates();
+  std::vector<char> left_out(static_cast<std::size_t>(n + ne), 0);
+  const auto& structures = dyn_->model().structures();
+  for (std::size_t k = 0; k < dyn_->split_structures().size(); ++k) {
+    const LowRankStructure& st = *structures[static_cast<std::size_t>(dyn_->split_structures()[k])];
+    if (!st.truncated()) continue;
+    const LowRankStructure::Range& r = st.ranges().front();
+    std::fill_n(left_out.begin() + nb + r.offset, r.size, 1);
+    std::fill_n(left_out.begin() + n + dyn_->split_offsets()[k] + st.rank(), st.rank(), 1);
+  }
+  for (int i = 0; i < n + ne; ++i) {
+    if (left_out[static_cast<std::size_t>(i)]) continue;
+    // A run never spans q and e: they unpack into different vectors.
+    if (runs_.empty() || runs_.back().full + runs_.back().size != i || i == n) runs_.push_back({i, 0});
+    ++runs_.back().size;
+    ++half_;
+  }
+  q_.setZero(n);
+  qd_.setZero(n);
+  e_.setZero(ne);
+  ed_.setZero(ne);
 }
 
 void SplitBeamSystem::unpack(const Eigen::VectorXd& y) {
-  const int n = dyn_->n(), ne = dyn_->num_split_coordinates();
   if (y.size() != size())
     throw std::invalid_argument("SplitBeamSystem: y has " + std::to_string(y.size()) + " entries, expected " +
-                                std::to_string(size()) + " ([q_b; q_c; e; rates])");
-  q_ = y.head(n);
-  e_ = y.segment(n, ne);
-  qd_ = y.segment(n + ne, n);
-  ed_ = y.tail(ne);
+                                std::to_string(size()) + " ([q_b; q_c; e; rates], without truncated beams' zeros)");
+  const int n = dyn_->n();
+  int at = 0;
+  for (const Run& r : runs_) {
+    if (r.full < n) {
+      q_.segment(r.full, r.size) = y.segment(at, r.size);
+      qd_.segment(r.full, r.size) = y.segment(half_ + at, r.size);
+    } else {
+      e_.segment(r.full - n, r.size) = y.segment(at, r.size);
+      ed_.segment(r.full - n, r.size) = y.segment(half_ + at, r.size);
+    }
+    at += r.size;
+  }
+}
+
+void SplitBeamSystem::pack(const Eigen::VectorXd& q, const Eigen::VectorXd& e, double* half) const {
+  const int n = dyn_->n();
+  for (const Run& r : runs_) {
+    const double* from = r.full < n ? q.data() + r.full : e.data() + (r.full - n);
+    std::copy(from, from + r.size, half);
+    half += r.size;
+  }
+}
+
+int SplitBeamSystem::full_index(int i) const {
+  for (const Run& r : runs_) {
+    if (i < r.size) return r.full + i;
+    i -= r.size;
+  }
+  return -1;
 }
 
 void SplitBeamSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
@@ -38,16 +85,14 @@ void SplitBeamSystem::rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& y
   const SplitState split{e_, ed_};
   dyn_->evaluate(t, q_, qd_, nullptr, &split);
   dyn_->solve_partitioned(t, independent_, qdd_, lambda_);
-  const int n = dyn_->n(), ne = dyn_->num_split_coordinates();
   ydot.resize(y.size());
-  ydot.head(n + ne) = y.tail(n + ne);
-  ydot.segment(n + ne, n) = qdd_;
-  ydot.tail(ne) = dyn_->split_accelerations();
+  ydot.head(half_) = y.tail(half_);
+  pack(qdd_, dyn_->split_accelerations(), ydot.data() + half_);
 }
 
 std::string SplitBeamSystem::name(int i) const {
-  const int n = dyn_->n(), ne = dyn_->num_split_coordinates(), nz = n + ne;
-  const int k = i % nz;
+  const int n = dyn_->n(), nz = half_;
+  const int k = full_index(i % nz);
   std::string base;
   if (k < n) {
     base = dyn_->model().coordinate_names()[k];
@@ -69,22 +114,15 @@ Eigen::VectorXd SplitBeamSystem::initial_state(double, const Eigen::VectorXd& q,
   if (q.size() != n || qd.size() != n)
     throw std::invalid_argument("initial state has " + std::to_string(q.size()) + " / " + std::to_string(qd.size()) +
                                 " entries, expected " + std::to_string(n) + " ([q_b; q_c])");
-  Eigen::VectorXd y(size());
-  y.head(n) = q;
-  y.segment(n + ne, n) = qd;
-  dyn_->split_from_nodal(q.tail(n - nb), e_);
-  y.segment(n, ne) = e_;
-  dyn_->split_from_nodal(qd.tail(n - nb), ed_);
-  y.tail(ne) = ed_;
   // A truncated beam has no uniform part: its q is Phi_L eta, the projection
-  // eta = Phi_L^T M q of the nodal state on its kept modes.
-  for (int k : dyn_->split_structures()) {
-    const LowRankStructure& st = *dyn_->model().structures()[k];
-    if (!st.truncated()) continue;
-    const LowRankStructure::Range& r = st.ranges().front();
-    y.segment(nb + r.offset, r.size).setZero();
-    y.segment(n + ne + nb + r.offset, r.size).setZero();
-  }
+  // eta = Phi_L^T M q of the nodal state on its kept modes; pack leaves its
+  // q_c range (and its zeta, 0) out.
+  Eigen::VectorXd y(size());
+  Eigen::VectorXd e(ne), ed(ne);
+  dyn_->split_from_nodal(q.tail(n - nb), e);
+  dyn_->split_from_nodal(qd.tail(n - nb), ed);
+  pack(q, e, y.data());
+  pack(qd, ed, y.data() + half_);
   return y;
 }
 

@@ -5,6 +5,9 @@
 // coordinates [eta; zeta]. The same ODE as the partitioned formulation's with
 // nothing to partition (no constraint contacts), at a cost per right-hand side
 // that no longer grows with the number of kept modes times the beam's DOFs.
+// A truncated beam (policy truncate) has s = 0 and zeta = 0 at all times: y
+// leaves those entries out, and each half of y holds the rest of [q; e] in
+// order, so an integrator's vector work is the kept modes', not the DOFs'.
 #pragma once
 
 #include <Eigen/Core>
@@ -22,7 +25,7 @@ class SplitBeamSystem : public CoupledSystem {
   ///         constraint contacts, no joined structures, a low-rank beam).
   explicit SplitBeamSystem(std::shared_ptr<CoupledDynamics> dyn);
 
-  int size() const override { return 2 * (dyn_->n() + dyn_->num_split_coordinates()); }
+  int size() const override { return 2 * half_; }
   void rhs(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) override;
   std::string name(int i) const override;
 
@@ -38,11 +41,23 @@ class SplitBeamSystem : public CoupledSystem {
   const ContactReport& report(double t, const Eigen::VectorXd& y) override;
 
  private:
-  // q_, qd_, e_, ed_ from y (q_c of split beams: their uniform part).
+  // A run of consecutive entries of [q; e] that y holds (each half of y
+  // is these runs, packed in order).
+  struct Run {
+    int full = 0, size = 0;
+  };
+  // q_, qd_, e_, ed_ from y (q_c of split beams: their uniform part; the
+  // entries y leaves out stay 0).
   void unpack(const Eigen::VectorXd& y);
+  // One half of y from [q; e] given as its two parts.
+  void pack(const Eigen::VectorXd& q, const Eigen::VectorXd& e, double* half) const;
+  // The entry of [q; e] that entry i of a half of y holds.
+  int full_index(int i) const;
   // Whether (t, y) is the state of the last report, still described by the dynamics.
   bool is_reported(double t, const Eigen::VectorXd& y) const;
 
+  std::vector<Run> runs_;
+  int half_ = 0;           // entries in each half of y
   Partition independent_;  // every rigid coordinate independent (m = 0)
   Eigen::VectorXd q_, qd_, e_, ed_, qdd_, lambda_, ydot_;
   // The last report, valid while no right-hand side has been evaluated since.
