@@ -8,7 +8,6 @@
 
 #include "runtime/errors/multibody_errors.h"
 #include "runtime/fem/hermite_shape.h"
-#include "runtime/linalg/row_products.h"
 #include "runtime/linalg/sparse_ldlt_solve.h"
 
 namespace mbfe::runtime {
@@ -88,52 +87,7 @@ void CoupledDynamics::evaluate(double t, const Eigen::VectorXd& q, const Eigen::
   const double* qc = q.data() + nb;
   const double* qcd = qd.data() + nb;
   if (split != nullptr) {
-    if (d.split_qc.size() != nc) {
-      d.split_qc = q.tail(nc);
-      d.split_qcd = qd.tail(nc);
-    }
-    for (const auto& [offset, size] : unsplit_ranges_) {
-      d.split_qc.segment(offset, size) = q.segment(nb + offset, size);
-      d.split_qcd.segment(offset, size) = qd.segment(nb + offset, size);
-    }
-    d.split_read.clear();
-    for (const auto& f : model.forces()) f->beam_dofs_read(qb, d.split_read);
-    // eta - zeta and its rate once per structure; then one row of Phi_L per DOF read.
-    d.split_delta.resize(split_size_ / 2);
-    d.split_delta_rate.resize(split_size_ / 2);
-    for (std::size_t k = 0; k < split_structure_.size(); ++k) {
-      const Eigen::Index m = model.structures()[split_structure_[k]]->rank();
-      const int o = split_offset_[k];
-      d.split_delta.segment(o / 2, m) = split->e.segment(o, m) - split->e.segment(o + m, m);
-      d.split_delta_rate.segment(o / 2, m) = split->ed.segment(o, m) - split->ed.segment(o + m, m);
-    }
-    auto nodal = [&](int k) {
-      const std::size_t s = static_cast<std::size_t>(split_structure_[static_cast<std::size_t>(k)]);
-      const LowRankStructure& st = *model.structures()[s];
-      const LowRankStructure::Range& r = st.ranges().front();
-      const Eigen::Index m = st.rank();
-      const int o = split_offset_[static_cast<std::size_t>(k)] / 2;
-      LowRankStructure::Workspace& ws = d.structures[s];
-      ws.rows.clear();
-      for (int c : d.split_read) {
-        if (c < r.offset || c >= r.offset + r.size) continue;
-        char& listed = ws.row_listed[static_cast<std::size_t>(c - r.offset)];
-        if (!listed) ws.rows.push_back(c - r.offset);  // two forces at one DOF read it once
-        listed = 1;
-      }
-      for (int row : ws.rows) ws.row_listed[static_cast<std::size_t>(row)] = 0;
-      const int n = static_cast<int>(ws.rows.size());
-      ws.row_x.resize(ws.rows.size());
-      ws.row_v.resize(ws.rows.size());
-      dot_rows(st.phi().data(), m, ws.rows.data(), n, d.split_delta.data() + o, d.split_delta_rate.data() + o,
-               ws.row_x.data(), ws.row_v.data());
-      for (int i = 0; i < n; ++i) {
-        const int c = r.offset + ws.rows[static_cast<std::size_t>(i)];
-        d.split_qc[c] = q[nb + c] + ws.row_x[static_cast<std::size_t>(i)];
-        d.split_qcd[c] = qd[nb + c] + ws.row_v[static_cast<std::size_t>(i)];
-      }
-    };
-    lanes_->run(static_cast<int>(split_structure_.size()), nodal);
+    split_read_dofs_nodal(qb, q, qd, *split);
     qc = d.split_qc.data();
     qcd = d.split_qcd.data();
   }

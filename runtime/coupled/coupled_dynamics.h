@@ -200,6 +200,10 @@ class CoupledDynamics {
   void split_accelerations(int k, const Eigen::Ref<const Eigen::VectorXd>& s,
                            const Eigen::Ref<const Eigen::VectorXd>& sd, const double* f,
                            const SplitState& split, Eigen::Ref<Eigen::VectorXd> a);
+  // data_.split_qc, split_qcd: the beam coordinates the forces read made
+  // nodal (split coordinates), for the rigid coordinates qb.
+  void split_read_dofs_nodal(const double* qb, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                             const SplitState& split);
   // y = M_c^-1 e_c for beam DOF c (cached per DOF).
   const Eigen::VectorXd& inverse_mass_column(int beam, int c);
 
