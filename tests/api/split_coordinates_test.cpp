@@ -6,7 +6,8 @@
 // and a moving load on the messenger: every kind of force the split form
 // reads or applies at a few DOFs. Each test runs with the policy cap
 // (B = M) and the policy mass (B = K), whose split coordinates differ in
-// their base solve and modal values.
+// their base solve and modal values; the state's layout under policy
+// truncate has a test of its own.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -192,6 +193,62 @@ TEST_P(SplitCoordinates, SimulateTakesThemAndLeavesRowsWithoutCoordinates) {
   Rows augmented;
   const runtime::SimulationReport nodal = model.simulate(request, augmented);
   EXPECT_EQ(nodal.variant.find("split coordinates"), std::string::npos) << nodal.variant;
+}
+
+// Policy truncate: a truncated wire's uniform part and its zeta are 0 at all
+// times, and the state leaves them out. Its size, names and round trip to
+// nodal coordinates against the wire's kept modes computed here.
+TEST(SplitCoordinatesTruncated, TheStateLeavesTheZerosOut) {
+  const Model model = load("truncate");
+  auto dyn = model.assembled().make_dynamics(true);
+  runtime::SplitBeamSystem split(dyn);
+  ASSERT_EQ(dyn->split_structures().size(), 2u);
+  const int n = dyn->n(), nb = dyn->nb(), ne = dyn->num_split_coordinates();
+  int left_out = 0, kept_modes = 0;
+  for (int k : dyn->split_structures()) {
+    const auto& st = *dyn->model().structures()[static_cast<std::size_t>(k)];
+    ASSERT_TRUE(st.truncated());
+    left_out += st.ranges().front().size + st.rank();
+    kept_modes += st.rank();
+  }
+  ASSERT_GT(kept_modes, 0);
+  EXPECT_EQ(split.size(), 2 * (n + ne - left_out));
+  // Names: the rigid coordinates, each kept mode's eta, their rates; no zeta.
+  int etas = 0;
+  for (int i = 0; i < split.size(); ++i) {
+    const std::string name = split.name(i);
+    EXPECT_EQ(name.find("_zeta"), std::string::npos) << name;
+    if (name.find("_eta") != std::string::npos) ++etas;
+  }
+  EXPECT_EQ(etas, 2 * kept_modes);
+  EXPECT_EQ(split.name(0), dyn->model().coordinate_names()[0]);
+  // The round trip projects each wire on its kept modes, q = Phi (Phi^T M q0).
+  Eigen::VectorXd q0, qd0, q, qd;
+  perturbed_state(model, nb, q0, qd0);
+  dyn->impose_motion(0.0, q0, qd0);
+  const Eigen::VectorXd y = split.initial_state(0.0, q0, qd0);
+  ASSERT_EQ(y.size(), split.size());
+  split.full_state(0.0, y, q, qd);
+  EXPECT_EQ(q.head(nb), q0.head(nb));
+  EXPECT_EQ(qd.head(nb), qd0.head(nb));
+  for (int k : dyn->split_structures()) {
+    const auto& st = *dyn->model().structures()[static_cast<std::size_t>(k)];
+    const auto& r = st.ranges().front();
+    const Eigen::VectorXd q_wire = q0.segment(nb + r.offset, r.size), qd_wire = qd0.segment(nb + r.offset, r.size);
+    const Eigen::VectorXd want = st.phi() * (st.phi().transpose() * (st.M() * q_wire));
+    const Eigen::VectorXd want_rate = st.phi() * (st.phi().transpose() * (st.M() * qd_wire));
+    EXPECT_LE((q.segment(nb + r.offset, r.size) - want).cwiseAbs().maxCoeff(),
+              kSummationOrderTol * want.cwiseAbs().maxCoeff())
+        << st.name();
+    EXPECT_LE((qd.segment(nb + r.offset, r.size) - want_rate).cwiseAbs().maxCoeff(),
+              kSummationOrderTol * want_rate.cwiseAbs().maxCoeff())
+        << st.name();
+  }
+  // The right-hand side is of the packed state: its first half is y's rates.
+  Eigen::VectorXd ydot;
+  split.rhs(0.0, y, ydot);
+  ASSERT_EQ(ydot.size(), y.size());
+  EXPECT_EQ(ydot.head(y.size() / 2), y.tail(y.size() / 2));
 }
 
 INSTANTIATE_TEST_SUITE_P(Policies, SplitCoordinates, testing::Values("cap", "mass"),
