@@ -75,9 +75,11 @@ struct CoupledData {
   Eigen::MatrixXd p_jv, p_ju, p_xju, p_xh, p_dir, p_a;
   Eigen::VectorXd p_d, p_rhs, p_base, p_b, p_x, p_mu;
   SmallLu p_jv_lu, p_a_lu;
-  // Split coordinates: the q_c, q_c' with the DOFs the forces read made
-  // nodal, those DOFs, eta - zeta per split structure and its rate, the kept
-  // modes' loads and accelerations.
+  // Split coordinates: the q_c, q_c' the forces read (beams that are not
+  // split as they are, the DOFs the forces read of split ones made nodal;
+  // the other DOFs of split beams hold whatever an earlier evaluation left,
+  // and nothing reads them), those DOFs, eta - zeta per split structure and
+  // its rate, the kept modes' loads and accelerations.
   Eigen::VectorXd split_qc, split_qcd, split_delta, split_delta_rate, split_acc;
   std::vector<int> split_read;
   // Loads the caller sets while a run goes (CoupledDynamics::set_applied_load).

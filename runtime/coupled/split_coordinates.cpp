@@ -1,6 +1,7 @@
 // CoupledDynamics in split coordinates (docs/damping-adjustment.md, "Split
 // coordinates"): which low-rank beams are split, the maps between their
-// nodal and split coordinates, and their kept modes' accelerations.
+// nodal and split coordinates, the DOFs the forces read made nodal, and the
+// kept modes' accelerations.
 #include "runtime/coupled/coupled_dynamics.h"
 
 #include "runtime/linalg/row_products.h"

@@ -125,8 +125,8 @@ BeamModel analyse_beams(const ir::Model& model, const BeamAnalysisOptions& optio
     if (failure) std::rethrow_exception(failure);  // the first beam's in model order, as a serial loop would
 
   BeamModel out;
-  // Reserved: BeamPart moves by copying (Eigen's sparse matrices have no
-  // noexcept move), and a regrown vector would copy every basis.
+  // Reserved: BeamPart's move may throw (Eigen's sparse matrices), so a
+  // regrown vector would copy its parts, every basis with them.
   out.beams.reserve(count);
   std::vector<ModalDynamics> all_original, all_adjusted;
   bool complete = true;

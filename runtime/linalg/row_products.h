@@ -5,7 +5,7 @@
 // vectors: the rows come from far caches and the vectors from near ones, so a
 // pass that reads each vector entry once for four rows does a quarter of the
 // near-cache traffic of four row-by-row products (docs/performance.md, "The
-// ten-span models truncated").
+// ten-span models in real time").
 
 #include <Eigen/Core>
 
