@@ -188,7 +188,9 @@ struct Adjustment {
   SourceLoc omega_limit_loc;     // the omega_limit value, for messages
   double margin = 0.1;           // the paper's l
   double zeta_min = 0.0;         // damping-ratio floor for oscillatory modes
-  AdjustmentPolicy policy = AdjustmentPolicy::kCap;  // a block without `policy:` parses as kMass
+  /// The default, as a block without `policy:` reads (docs/damping-adjustment.md,
+  /// "Which policy is the default"); a joined scope takes only kCap.
+  AdjustmentPolicy policy = AdjustmentPolicy::kMass;
   AdjustmentScope scope = AdjustmentScope::kBeam;
   SourceLoc loc;
   /// The block is present and changes something (its policy is not `none`).
