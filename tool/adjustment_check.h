@@ -45,29 +45,45 @@ struct ColumnDifference {
 struct AdjustmentCheck {
   double t_end = 0.0;  // s, T
   double step = 0.0;   // s, the original model's implicit step
+  double omega = 0.0;  // rad/s, the fastest frequency the step resolves (check_step)
   std::string integrator = "generalized_alpha";
   ColumnDifference contact_force;  // force_* and lambda_* columns (N)
   ColumnDifference displacement;   // columns in m (rigid coordinates but driven ones, beam deflections, probes) but phi_abs
+  /// The reference against the same run at twice its step, the same
+  /// measures: an upper bound of the reference's own error (for a
+  /// second-order method about three times it), which the figures above
+  /// include. Empty columns when that run did not complete.
+  ColumnDifference reference_contact_force;
+  ColumnDifference reference_displacement;
   /// Empty when the original model's run completed; otherwise why not
   /// (the differences are then over the rows it reached).
   std::string message;
 };
 
+/// The fastest frequency (rad/s) an adjusted run of `model` represents and its
+/// check must resolve: the largest omega_limit of its adjusted beams (`limits`,
+/// as the run chose them) and the bounce of each body on a linear contact
+/// spring, sqrt(k / m); 0 when it has neither.
+double resolved_frequency(const ir::Model& model, const std::vector<runtime::AdjustmentEstimate::Limit>& limits);
+
 /// The step of the check: the run's step divided by the smallest whole
-/// number that gives at least 2000 steps over T (generalized-alpha's own
-/// error then stays near 1e-4 of a contact force on the shipped models).
-double check_step(double run_step, double t_check);
+/// number that gives at least 2000 steps over T and h omega <= 0.05 for
+/// omega = resolved_frequency (generalized-alpha's phase error there is then
+/// about 1e-4 a period; docs/damping-adjustment.md, "Checking a run").
+double check_step(double run_step, double t_check, double omega);
 
 /// Runs the original model over [0, t_check] with generalized_alpha at
 /// check_step (the request's probes, start and formulation) and compares it
 /// with `adjusted`, the rows of the adjusted run up to t_check (linear
-/// interpolation of the reference at the adjusted run's times).
+/// interpolation of the reference at the adjusted run's times); then the
+/// reference at twice its step against it, for the reference's own error.
 /// @throws as Model::simulate for a request the original model cannot run.
 AdjustmentCheck check_adjustment(const Model& model, const runtime::SimulationRequest& run,
-                                 const RowsUpTo& adjusted, double t_check);
+                                 const runtime::SimulationReport& report, const RowsUpTo& adjusted, double t_check);
 
-/// The sidecar's "adjustment_check": {t_end, integrator, step,
-/// contact_force: {relative, column}, displacement: {relative, column}, message}.
+/// The sidecar's "adjustment_check": {t_end, integrator, step, omega,
+/// contact_force: {relative, column}, displacement: {relative, column},
+/// reference_change: {contact_force, displacement}, message}.
 nlohmann::json adjustment_check_json(const AdjustmentCheck& check);
 
 /// The line for stderr.

@@ -79,10 +79,12 @@ Options:
                      at most 10000)
   --check-adjustment T
                      after an adjusted run, run its first T s again with the
-                     original model (generalized_alpha, at least 2000 steps)
-                     and report how far the contact forces and displacements
-                     are from it (stderr, and "adjustment_check" in the
-                     sidecar); docs/damping-adjustment.md
+                     original model (generalized_alpha, at least 2000 steps,
+                     fine enough for the fastest frequency the run keeps) and
+                     report how far the contact forces and displacements are
+                     from it, and how far that reference moves at twice its
+                     step (stderr, and "adjustment_check" in the sidecar);
+                     docs/damping-adjustment.md
   --set PATH=VALUE   replace a value of the model file before it is read
                      (repeatable): PATH as a sweep's vary paths, list items by
                      their name: (loads.front_susp.stiffness=2e6,
@@ -324,7 +326,7 @@ int cmd_simulate(const Args& args) {
   nlohmann::json record = run_record(model, request, report, results.layout(), csv.rows());
   for (const std::string& w : run_warnings(model.ir(), report)) std::cerr << "mbfe: warning: " << w << "\n";
   if (check_until && report.message.empty()) {
-    const AdjustmentCheck check = check_adjustment(model, request, kept, *check_until);
+    const AdjustmentCheck check = check_adjustment(model, request, report, kept, *check_until);
     record["adjustment_check"] = adjustment_check_json(check);
     std::cerr << "mbfe: " << adjustment_check_line(check) << "\n";
   }

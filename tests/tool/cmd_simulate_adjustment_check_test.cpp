@@ -1,8 +1,9 @@
 // `mbfe simulate --check-adjustment T` through the real binary: the figures in
 // the sidecar against the same comparison made here from two CSVs, the
 // adjusted run and a separate run of the original model with
-// generalized_alpha at the step the check documents; and the estimate
-// written beside every adjusted run.
+// generalized_alpha at the step the check documents, and the reference's
+// own change at twice its step; and the estimate written beside every
+// adjusted run.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -61,11 +62,19 @@ TEST(SimulateAdjustmentCheck, TheSidecarHoldsTheDifferenceToTheOriginalModelsImp
   const nlohmann::json record = nlohmann::json::parse(read_text(adjusted.string() + ".json"));
   ASSERT_TRUE(record.contains("adjustment_check")) << record.dump();
   const nlohmann::json& check = record["adjustment_check"];
+  // The fastest frequency the run keeps: the cap, 2000 rad/s, above the
+  // wheel's bounce on its tyre, sqrt(5e6 N/m / 1000 kg) = 70.7 rad/s.
+  EXPECT_DOUBLE_EQ(check["omega"].get<double>(), 2000.0);
   // The step: 1e-3 s divided by the smallest whole number giving at least
-  // 2000 steps over 0.3 s: 7.
-  constexpr int kRatio = 7;
+  // 2000 steps over 0.3 s (7) and h omega <= 0.05 (40).
+  constexpr int kRatio = 40;
   const double h = 1e-3 / kRatio;
   EXPECT_DOUBLE_EQ(check["step"].get<double>(), h);
+  // The reference against itself at twice its step: far below the
+  // adjustment's difference, which it bounds from below.
+  ASSERT_EQ(check["reference_change"]["contact_force"]["column"], "force_tyre");
+  EXPECT_LT(check["reference_change"]["contact_force"]["relative"].get<double>(),
+            0.1 * check["contact_force"]["relative"].get<double>());
   EXPECT_EQ(check["integrator"], "generalized_alpha");
   EXPECT_EQ(check["message"], "");
   ASSERT_EQ(check["contact_force"]["column"], "force_tyre");
