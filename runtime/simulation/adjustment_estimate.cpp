@@ -214,6 +214,19 @@ double readable(double x) {
   return std::ceil(x / unit) * unit;
 }
 
+/// Where choose_omega_limit's grid ends (rad/s): the limit whose capped root
+/// equals the fastest bounce sqrt(k / m) of a body on a linear contact spring
+/// of the model, or half the beam's lowest mode `omega_1` without one.
+double grid_bottom(const ir::Model& model, const ir::Adjustment& adjustment, double omega_1) {
+  double bounce = 0.0;
+  for (const Place& place : places(model, {})) bounce = std::max(bounce, place.omega);
+  if (!(bounce > 0.0)) return 0.5 * omega_1;
+  // The capped root per rad/s of limit, (zeta + sqrt(zeta^2 - 1)) with
+  // zeta = 1 + margin / 2 (cap and mass alike).
+  const double zeta = 1.0 + 0.5 * adjustment.margin;
+  return bounce / (zeta + std::sqrt(zeta * zeta - 1.0));
+}
+
 }  // namespace
 
 double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAnalysisOptions& options) {
@@ -262,8 +275,13 @@ double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAn
                        "; lower zeta_min or raise the tolerance");
   // A log grid down from the top: the lowest grid point from which every
   // higher one meets the tolerance (the estimate need not fall monotonically
-  // with the limit), then bisection towards the grid point below it.
-  const double bottom = 0.5 * part.basis.omega[0];
+  // with the limit), then bisection towards the grid point below it. The
+  // grid goes below the beam's lowest mode (every mode capped, as a stiff
+  // slab's adjustment often is) down to where the capped root meets the
+  // fastest bounce of a body on a contact spring: a lower limit would not
+  // lengthen any stable step, which that root then sets. Without such a
+  // contact it stops at half the lowest mode.
+  const double bottom = grid_bottom(model, adjustment, part.basis.omega[0]);
   constexpr int kPerDecade = 40;
   const int count = std::max(2, static_cast<int>(std::ceil(kPerDecade * std::log10(top / bottom))));
   const double ratio = std::pow(top / bottom, 1.0 / count);
@@ -276,7 +294,7 @@ double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAn
     }
     pass = omega;
   }
-  if (fail == 0.0) return readable(pass);  // every limit down to half the lowest mode meets it
+  if (fail == 0.0) return readable(pass);  // every limit down to the grid's bottom meets it
   constexpr int kBisections = 40;
   for (int k = 0; k < kBisections; ++k) {
     const double mid = std::sqrt(pass * fail);

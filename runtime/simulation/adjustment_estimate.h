@@ -28,8 +28,10 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
 /// omega_limit: auto) whose estimate, the largest over the places on that
 /// beam where contacts, links and loads act, stays at or below the block's
 /// tolerance: a log grid (40 points a decade from 1.01 times the fastest root
-/// down to half the lowest mode), the lowest point from which every higher
-/// one meets it, refined by bisection. The beam's every mode is needed.
+/// down to the limit whose capped root is the fastest bounce of a body on a
+/// contact spring, or to half the lowest mode without one), the lowest point
+/// from which every higher one meets it, refined by bisection. The beam's
+/// every mode is needed.
 /// @throws InvalidInput (file:line:col at omega_limit) for scope joined, a
 ///         beam beyond the dense modal analysis, or a damping floor that alone
 ///         exceeds the tolerance.
