@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "runtime/coupled/beam_load_force.h"
+#include "runtime/coupled/discrete_damping_force.h"
 
 namespace mbfe::runtime {
 
@@ -76,7 +77,8 @@ CoupledModel::CoupledModel(const mbfe_model_v1& kernels, CoupledBeams beams, std
                                 "use slider_spring contacts with driven joints");
   }
   // The force elements, in the order their forces are summed: slider springs,
-  // links, then each beam's time loads.
+  // links, each beam's time loads, then the damping of adjusted beams'
+  // discrete parts.
   const std::vector<BeamMesh> meshes = meshes_of(beams_);
   for (int c = 0; c < kernels.num_contacts; ++c) {
     if (kernels.contacts[c].type != 2) continue;
@@ -105,6 +107,9 @@ CoupledModel::CoupledModel(const mbfe_model_v1& kernels, CoupledBeams beams, std
   }
   for (const CoupledBeam& b : beams_)
     if (b.time_loads) forces_.push_back(std::make_unique<BeamLoadForce>(b.time_loads, b.offset));
+  for (const CoupledBeam& b : beams_)
+    if (!b.damping_remainder.empty())
+      forces_.push_back(std::make_unique<DiscreteDampingForce>(b.mesh.name, b.damping_remainder, b.offset, nb_));
   // Split coordinates take the single beams in the low-rank form; a joined
   // structure or a constraint contact rules them out.
   bool any = false, joined = false;

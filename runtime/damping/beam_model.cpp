@@ -171,6 +171,12 @@ std::unique_ptr<ModalBeamOde> modal_beam_ode(const BeamModel& beams, bool adjust
   Eigen::SparseMatrix<double> M(n, n);
   M.setFromTriplets(trip.begin(), trip.end());
   auto ode = std::make_unique<ModalBeamOde>(basis, modes, M, P);
+  // Both models damp the modes by Rayleigh over the whole beam; the nodal C
+  // damps the discrete parts otherwise (BeamSystem::damping_remainder).
+  std::vector<std::pair<int, double>> remainder;
+  for (const BeamPart& b : beams.beams)
+    for (const auto& [dof, value] : b.system.damping_remainder) remainder.emplace_back(b.offset + dof, value);
+  if (!remainder.empty()) ode->set_damping_remainder(remainder);
   if (std::any_of(beams.beams.begin(), beams.beams.end(),
                   [](const BeamPart& b) { return b.system.has_time_loads(); })) {
     ode->set_time_loads([&beams, scratch = std::vector<NodalForce>()](double t, std::vector<NodalForce>& out) mutable {

@@ -9,12 +9,19 @@
 //
 // The load is P (constant) plus, when set, a time-dependent part given as
 // sparse nodal forces at t (runtime/fem/beam_loads.h).
+//
+// Damping: c_j per mode, plus, when set, the damping of the beam's discrete
+// parts that a Rayleigh c_j = alpha + beta omega_j^2 leaves out
+// (BeamSystem::damping_remainder: r diagonal entries R on a few DOFs), as
+// Phi_r^T R Phi_r with Phi_r those r rows of Phi: a rank-r coupling, solved
+// by Woodbury in the implicit steps (r x r).
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "runtime/fem/beam_loads.h"
@@ -39,7 +46,7 @@ class ModalBeamOde final : public LinearSecondOrderSystem {
                      Eigen::VectorXd& x) override;
   void load(double t, Eigen::VectorXd& out) override;
   void mult_m(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { out = m_.cwiseProduct(x); }
-  void mult_c(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { out = c_.cwiseProduct(x); }
+  void mult_c(const Eigen::VectorXd& x, Eigen::VectorXd& out) override;
   void mult_k(const Eigen::VectorXd& x, Eigen::VectorXd& out) override { out = k_.cwiseProduct(x); }
   void solve_combination(double a, double b, double c, const Eigen::VectorXd& r, Eigen::VectorXd& x) override;
   std::string name(int i) const override;
@@ -52,12 +59,21 @@ class ModalBeamOde final : public LinearSecondOrderSystem {
   const Eigen::VectorXd& modal_load() const { return p_; }  // Phi^T P (N)
   /// Adds a time-dependent load (empty function: none).
   void set_time_loads(TimeLoadFn loads) { time_loads_ = std::move(loads); }
+  /// Adds nodal damping on a few DOFs (DOF index, N s/m), on top of the modes'
+  /// own c_j. @throws std::invalid_argument for a DOF outside the beam.
+  void set_damping_remainder(const std::vector<std::pair<int, double>>& remainder);
   /// Phi^T (P + P_t(t)) (N).
   void modal_load_at(double t, Eigen::VectorXd& out);
 
  private:
+  /// x with (diag(d) + s Phi_r^T R Phi_r) x = rhs.
+  void solve_damped(const Eigen::VectorXd& d, double s, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const;
+
   Eigen::MatrixXd phi_, mphi_;  // Phi, M Phi
   Eigen::VectorXd k_, c_, m_, p_;  // per mode; p = Phi^T P
+  Eigen::MatrixXd phi_r_;          // the remainder's rows of Phi (r x n)
+  Eigen::VectorXd remainder_;      // R (r), N s/m
+  Eigen::VectorXd v_r_;            // scratch: Phi_r eta' (r)
   bool unit_mass_ = true;          // every m_j == 1: the right-hand side skips the division
   TimeLoadFn time_loads_;
   std::vector<NodalForce> forces_;  // scratch

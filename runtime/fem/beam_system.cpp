@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -169,6 +170,14 @@ BeamSystem assemble_beam(const ir::Beam& beam, const ir::Vec2& gravity) {
   add(sys.K, dk);
   add(sys.C, dc);
   add(sys.M, dm);
+  {
+    std::map<int, double> remainder;
+    for (const auto& t : dc) remainder[t.row()] += t.value();
+    for (const auto& t : dm) remainder[t.row()] -= beam.rayleigh_alpha * t.value();
+    for (const auto& t : dk) remainder[t.row()] -= beam.rayleigh_beta * t.value();
+    for (const auto& [dof, value] : remainder)
+      if (value != 0.0) sys.damping_remainder.emplace_back(dof, value);
+  }
   sys.K.makeCompressed();
   sys.M.makeCompressed();
   sys.C.makeCompressed();

@@ -9,6 +9,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ir/model.h"
@@ -30,7 +31,7 @@ struct BeamSystem {
   double element_length = 0.0;       // m
   Eigen::SparseMatrix<double> M;     // kg (consistent or lumped), n x n
   Eigen::SparseMatrix<double> K;     // N/m
-  Eigen::SparseMatrix<double> C;     // alpha M + beta K
+  Eigen::SparseMatrix<double> C;     // alpha M_e + beta K_e of the elements, plus the supports' dampers
   Eigen::VectorXd P;                 // N: gravity (own weight) + constant point loads
   /// Loads that change with time (runtime/fem/beam_loads.h adds them up at t):
   /// point loads with an expression in t or a time window, moving loads.
@@ -44,6 +45,14 @@ struct BeamSystem {
   double length = 0.0;               // m
   double rayleigh_alpha = 0.0;       // 1/s (C = alpha M + beta K)
   double rayleigh_beta = 0.0;        // s
+  /// C - (alpha M + beta K) over the whole beam: Rayleigh damping is the
+  /// elements', while M and K also hold the discrete parts (point masses,
+  /// spring supports with their masses), whose dampers C holds as they are.
+  /// So the remainder is, per free DOF of a discrete part (sorted, each once),
+  /// its dampers' c - alpha m - beta k (N s/m). A modal form that damps every
+  /// mode by alpha + beta omega_j^2 adds it to keep the original C
+  /// (docs/damping-adjustment.md, "The discrete parts' damping").
+  std::vector<std::pair<int, double>> damping_remainder;
   /// S with S^T S = K (r x n, r = 2 per element for the Hermite element), or
   /// empty when the element offers no factor. Used by the sparse modal path.
   Eigen::SparseMatrix<double> stiffness_factor;

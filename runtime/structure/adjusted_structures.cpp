@@ -22,6 +22,10 @@ CoupledBeams coupled_beams(const BeamModel& beams, bool adjusted, const std::vec
       out.structures.push_back(std::make_shared<const LowRankStructure>(
           adjusted_parts(b.system.name, {{b.offset, static_cast<int>(b.system.M.rows())}}, b.system.M, b.system.K,
                          b.system.P, b.basis, b.adjusted)));
+      // Its kept modes are damped by Rayleigh over the whole beam; the
+      // original C damps the discrete parts otherwise. (A joined structure
+      // damps each mode by the diagonal of Phi^T C Phi instead.)
+      beam.damping_remainder = b.system.damping_remainder;
     }
     beam.structure = structure_of[k];
     if (beam.structure >= 0) {

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "runtime/fem/beam_system.h"
@@ -27,6 +28,11 @@ struct CoupledBeam {
   std::shared_ptr<const BeamSystem> time_loads;
   /// The adjusted structure that holds it (an index into CoupledBeams::structures), -1 for none.
   int structure = -1;
+  /// Held by a structure of its own, whose modal form damps each mode by
+  /// Rayleigh's alpha + beta omega_j^2: the damping of its discrete parts
+  /// that form leaves out (BeamSystem::damping_remainder: free DOF, N s/m),
+  /// which the coupled model adds back as a force; empty otherwise.
+  std::vector<std::pair<int, double>> damping_remainder;
 };
 
 /// The beams of a coupled model and the adjusted structures over them.
