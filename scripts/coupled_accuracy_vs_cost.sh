@@ -8,6 +8,10 @@
 # also wants SUNDIALS for the beam study: installed through install-deps.sh),
 # builds the study and runs it (about 2 minutes on 2 cores: the references are
 # 800,000 implicit steps of the platform and 120,000 RK4 steps of the bridge).
+# Then the policies' study, scripts/adjustment_error_study.sh (about 20 minutes
+# more): `cap` beside `mass` on the 30 m railway bridge, the platform, the
+# moving mass and the two-span catenary, each contact's force on its own row,
+# into the same document's "adjustment-errors" tables.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -83,3 +87,4 @@ GP
 } > "$out/plot.gp"
 gnuplot "$out/plot.gp"
 echo "coupled_accuracy_vs_cost: wrote ${doc} (tables) and ${png}"
+scripts/adjustment_error_study.sh
