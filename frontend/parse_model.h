@@ -12,6 +12,10 @@ namespace mbfe::frontend {
 /// Upper bounds that keep an absurd file from exhausting the machine.
 struct ParseLimits {
   std::size_t max_file_bytes = 16u << 20;  // 16 MiB
+  /// A profile table (`profile: {file: ...}`): rows of s and offset, about
+  /// 20 bytes each, so some 3 million rows (a 500 km line sampled every
+  /// 0.25 m, or 3 km every millimetre). Read whole, and kept as doubles.
+  std::size_t max_table_bytes = std::size_t{64} << 20;  // 64 MiB
   /// The generated solver of a chain of 200 bodies with a point on each
   /// compiles in about 35 s at -O3 (docs/performance.md, "Model size and
   /// compile time"); the compile grows faster than the body count.
