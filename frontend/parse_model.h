@@ -23,6 +23,13 @@ struct ParseLimits {
   /// Named points of all bodies together: each gets a position kernel as
   /// long as its body's path to the ground.
   int max_points = 200;
+  /// A spatial model (dimension: 3) costs more to compile per body: its
+  /// bodies and their velocity coordinates (1 a revolute or prismatic joint,
+  /// 3 a spherical, 6 a free one) are bounded so that the largest model
+  /// allowed compiles within the planar limit's budget (docs/performance.md,
+  /// "Model size and compile time").
+  int max_spatial_bodies = 50;
+  int max_spatial_velocities = 100;
   int max_beam_elements = 200000;   // per beam
   long max_total_beam_dofs = 2000000;
   std::size_t max_name_length = 128;
