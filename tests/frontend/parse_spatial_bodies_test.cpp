@@ -213,6 +213,28 @@ TEST(ParseSpatialModel, RefusesABodyNamedLikeAQuaternionCoordinate) {
             "name at line 4");
 }
 
+TEST(ParseSpatialModel, OutputColumnsFollowWhatEachJointWrites) {
+  // A spherical or free joint writes <body>_qw.. and <body>_wx.. (no <body>
+  // and no <body>_dot column): bodies b and b_dot beside it were refused as a
+  // clash of two b_dot columns, and so was a spherical a_dot beside a
+  // revolute a.
+  const std::string inertia = "mass: 1, inertia: [1, 1, 1, 0, 0, 0]}\n";
+  EXPECT_EQ(error_of(spatial("  - {name: b, parent: ground, joint: {type: spherical}, " + inertia +
+                             "  - {name: b_dot, parent: b, joint: {type: revolute, axis: [0, 0, 1]}, " + inertia +
+                             "  - {name: c, parent: ground, joint: {type: free}, " + inertia +
+                             "  - {name: c_dot, parent: c, joint: {type: prismatic, axis: [1, 0, 0]}, " + inertia +
+                             "  - {name: a, parent: ground, joint: {type: revolute, axis: [0, 1, 0]}, " + inertia +
+                             "  - {name: a_dot, parent: a, joint: {type: spherical}, " + inertia)),
+            "(accepted)");
+  // The columns that would be written twice still are refused: a revolute
+  // a_dot beside a revolute a (the rate of a); a body named loop_residual in
+  // a model with closed loops: tests/malformed/output_name_loop_residual.yaml.
+  EXPECT_EQ(error_of(spatial("  - {name: a, parent: ground, joint: {type: revolute, axis: [0, 1, 0]}, " + inertia +
+                             "  - {name: a_dot, parent: a, joint: {type: revolute, axis: [1, 0, 0]}, " + inertia)),
+            "models/x.yaml:5:12: body 'a_dot' (its coordinate) writes the column 'a_dot', which body 'a' (its rate) "
+            "(line 4) writes too; output columns need distinct names: rename one");
+}
+
 /// n bodies in series on revolute joints, the first n_free on free joints.
 std::string spatial_chain(int n, int n_free) {
   std::string bodies;
