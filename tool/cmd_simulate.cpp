@@ -304,8 +304,7 @@ int cmd_simulate(const Args& args) {
     // Ctrl-C, SIGTERM, SIGHUP: the run stops before its next step, whole
     // rows written and the record beside them says so (exit status 3).
     const InterruptGuard interrupts;
-    ProgressLine progress(!quiet, request.t_end,
-                          static_cast<std::int64_t>(std::ceil(request.t_end / request.step - 1e-9)));
+    ProgressLine progress(!quiet, request.t_end);
     const runtime::StepMonitor keep_going = [&](double t, std::int64_t steps) {
       progress.update(t, steps);
       return !InterruptGuard::interrupted();
