@@ -20,6 +20,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -62,6 +63,11 @@ struct LoadOptions {
   /// Values of the file replaced before it is validated (`--set PATH=VALUE`,
   /// ir/model_override.h), in order; an error at one says it came from --set.
   ir::ModelOverrides overrides;
+  /// Called with the model as read, before its solver is compiled or loaded:
+  /// a program refuses there what the file reveals (an output path onto one
+  /// of the files the model reads) without waiting for a compile. What it
+  /// throws leaves load or parse.
+  std::function<void(const ir::Model&)> on_read;
 };
 
 /// M(q), F(q, q'), Q(q, q', t) of the rigid part at one state and, for a model

@@ -76,12 +76,14 @@ LoadedSolver cached_solver(const ir::Model& model, const LoadOptions& options) {
 
 Model Model::load(const std::string& path, const LoadOptions& options) {
   ir::Model model = frontend::load_model_file(path, {}, options.overrides);
+  if (options.on_read) options.on_read(model);
   const LoadedSolver solver = cached_solver(model, options);
   return make(std::move(model), solver.model, solver.library_path, solver.compiled_now, options);
 }
 
 Model Model::parse(const std::string& text, const std::string& display_path, const LoadOptions& options) {
   ir::Model model = frontend::parse_model_text(text, display_path, {}, options.overrides);
+  if (options.on_read) options.on_read(model);
   const LoadedSolver solver = cached_solver(model, options);
   return make(std::move(model), solver.model, solver.library_path, solver.compiled_now, options);
 }

@@ -7,13 +7,28 @@ namespace mbfe::frontend {
 
 void ModelParser::parse_bodies(const MapView& top, const Field& field) {
   const auto items = bounded_list(top, field, limits_.max_bodies, "max_bodies");
-  long total_points = 0;
+  const bool spatial = model_.dimension == 3;
+  // Why a spatial model has limits of its own, in every message about them.
+  const std::string spatial_reason =
+      " of a spatial model: its generated solver would take too long to compile (docs/performance.md, \"Model size "
+      "and compile time\")";
+  if (spatial && static_cast<long>(items.size()) > limits_.max_spatial_bodies)
+    top.fail(field.value_loc, field.key + ": " + std::to_string(items.size()) + " entries, more than the limit of " +
+                                  std::to_string(limits_.max_spatial_bodies) + " (ParseLimits::max_spatial_bodies)" +
+                                  spatial_reason);
+  long total_points = 0, velocities = 0;
   for (std::size_t i = 0; i < items.size(); ++i) {
     const MapView view(file_, items[i],
                        item_context(items[i], "body", i, limits_.max_name_length), "",
                        field.value_loc);
     model_.bodies.push_back(parse_body(view));
     const Body& body = model_.bodies.back();
+    velocities += velocity_count(body.joint.type);
+    if (spatial && velocities > limits_.max_spatial_velocities)
+      view.fail(body.loc, view.prefixed("the joints up to here have " + std::to_string(velocities) +
+                                        " velocity coordinates (a free joint 6, a spherical one 3, the others 1), "
+                                        "more than the limit of " + std::to_string(limits_.max_spatial_velocities) +
+                                        " (ParseLimits::max_spatial_velocities)" + spatial_reason));
     total_points += static_cast<long>(body.points.size());
     if (total_points > limits_.max_points) {
       const NamedPoint& last = body.points.back();

@@ -7,17 +7,14 @@
 // each value checked and each cross reference resolved to an index.
 #include "frontend/parse_model.h"
 
-#include <sys/stat.h>
 #include <yaml-cpp/yaml.h>
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <new>
 #include <sstream>
 #include <unordered_map>
 
+#include "frontend/capped_file.h"
 #include "frontend/expand_train.h"
 #include "frontend/model_overrides.h"
 #include "frontend/model_parser.h"
@@ -104,30 +101,13 @@ Model parse_model_text(const std::string& text, const std::string& display_path,
 }
 
 Model load_model_file(const std::string& path, const ParseLimits& limits, const ir::ModelOverrides& overrides) {
-  struct stat info {};
-  if (::stat(path.c_str(), &info) != 0) {
-    throw ModelError(path, {}, std::string("cannot read: ") + std::strerror(errno));
-  }
-  if (S_ISDIR(info.st_mode)) throw ModelError(path, {}, "cannot read: is a directory");
-  // Refuse before reading: a huge file must not be loaded into memory.
-  if (S_ISREG(info.st_mode) && static_cast<std::size_t>(info.st_size) > limits.max_file_bytes) {
-    throw ModelError(path, {1, 1},
-                     "the file is " + std::to_string(info.st_size) +
-                         " bytes, more than the limit of " + std::to_string(limits.max_file_bytes) +
-                         " (ParseLimits::max_file_bytes)");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ModelError(path, {}, std::string("cannot read: ") + std::strerror(errno));
-  // Read at most one byte past the limit, so a growing or special file
-  // (a pipe, /dev/zero) cannot make us read without end.
-  std::string text;
-  std::vector<char> buffer(1 << 16);
-  while (in && text.size() <= limits.max_file_bytes) {
-    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-    text.append(buffer.data(), static_cast<std::size_t>(in.gcount()));
-  }
-  if (in.bad()) throw ModelError(path, {}, "cannot read: I/O error");
-  return parse_model_text(text, path, limits, overrides);
+  // Refused before reading: a huge file must not be loaded into memory. A
+  // pipe or special file (/dev/zero) is read to one byte past the limit.
+  const CappedRead read = read_capped_file(path, limits.max_file_bytes, FileKinds::kAlsoStreams);
+  if (read.fault == ReadFault::kTooLarge)
+    throw ModelError(path, {1, 1}, read.why + " (ParseLimits::max_file_bytes)");
+  if (!read) throw ModelError(path, {}, read.why);
+  return parse_model_text(read.text, path, limits, overrides);
 }
 
 }  // namespace mbfe::frontend

@@ -12,6 +12,10 @@ namespace mbfe::frontend {
 /// Upper bounds that keep an absurd file from exhausting the machine.
 struct ParseLimits {
   std::size_t max_file_bytes = 16u << 20;  // 16 MiB
+  /// A profile table (`profile: {file: ...}`): rows of s and offset, about
+  /// 20 bytes each, so some 3 million rows (a 500 km line sampled every
+  /// 0.25 m, or 3 km every millimetre). Read whole, and kept as doubles.
+  std::size_t max_table_bytes = std::size_t{64} << 20;  // 64 MiB
   /// The generated solver of a chain of 200 bodies with a point on each
   /// compiles in about 35 s at -O3 (docs/performance.md, "Model size and
   /// compile time"); the compile grows faster than the body count.
@@ -19,6 +23,13 @@ struct ParseLimits {
   /// Named points of all bodies together: each gets a position kernel as
   /// long as its body's path to the ground.
   int max_points = 200;
+  /// A spatial model (dimension: 3) costs more to compile per body: its
+  /// bodies and their velocity coordinates (1 a revolute or prismatic joint,
+  /// 3 a spherical, 6 a free one) are bounded so that the largest model
+  /// allowed compiles within the planar limit's budget (docs/performance.md,
+  /// "Model size and compile time").
+  int max_spatial_bodies = 50;
+  int max_spatial_velocities = 100;
   int max_beam_elements = 200000;   // per beam
   long max_total_beam_dofs = 2000000;
   std::size_t max_name_length = 128;

@@ -3,7 +3,9 @@
 // two columns `a_dot`; every reader (mbfe stats, Python, a sweep's collect)
 // then picked a different one. The columns are those of
 // runtime/simulation/rigid_run.cpp, beam_run.cpp and coupled_run.cpp: `t`;
-// each body's coordinate, its rate `<body>_dot` and, driven, `<body>_drive`;
+// each body's coordinate, its rate `<body>_dot` and, driven, `<body>_drive`
+// (a spherical or free joint: its coordinates and velocities by the names of
+// ir/coordinate_layout.h, no `_dot`); `loop_residual` with closed loops;
 // each beam's `<beam>_w<node>`, `<beam>_dw<node>` and their rates; in a model
 // of bodies and beams `lambda_<contact>` (slider_pin), `lambda_<contact>_1`
 // and `_2` (pin), `phi_abs`, `force_<contact>` and `deflection_<contact>`
@@ -14,6 +16,7 @@
 #include <unordered_map>
 
 #include "frontend/model_parser.h"
+#include "ir/coordinate_layout.h"
 
 namespace mbfe::frontend {
 
@@ -75,8 +78,20 @@ void ModelParser::check_output_columns(const MapView& top) const {
     const auto it = coordinate_names_.find(name);
     return it == coordinate_names_.end() ? SourceLoc{} : it->second;
   };
+  if (!model_.constraints.empty() && model_.beams.empty())
+    columns.emplace("loop_residual", ColumnOwner{"the largest loop-closure residual of a model with constraints", {}});
   for (const Body& body : model_.bodies) {
     const SourceLoc loc = name_loc(body.name);
+    const JointType type = body.joint.type;
+    if (type == JointType::kSpherical || type == JointType::kFree) {
+      // Its coordinates and velocities by their own names, no `_dot`
+      // (<body>_qw, <body>_wx, ...; ir/coordinate_layout.h), and no drive.
+      for (const std::string& name : ir::position_names(type, body.name))
+        claim(name, {"body " + quoted(body.name) + " (its coordinate " + quoted(name) + ")", loc});
+      for (const std::string& name : ir::velocity_names(type, body.name))
+        claim(name, {"body " + quoted(body.name) + " (its velocity " + quoted(name) + ")", loc});
+      continue;
+    }
     claim(body.name, {"body " + quoted(body.name) + " (its coordinate)", loc});
     claim(body.name + "_dot", {"body " + quoted(body.name) + " (its rate)", loc});
     if (body.joint.motion) claim(body.name + "_drive", {"body " + quoted(body.name) + " (its drive)", loc});

@@ -5,10 +5,11 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
+#include "frontend/capped_file.h"
 #include "frontend/model_parser.h"
+#include "frontend/text_guard.h"
 
 namespace mbfe::frontend {
 
@@ -22,6 +23,9 @@ constexpr int kProfileChecks = 4000;
 // as L / wavelength_min; runtime/fem/running_surface.h): n m terms, about 1 s
 // at this bound.
 constexpr double kMaxHarmonicTerms = 2e8;
+
+// Bytes of a typical table row ("1234.25,-0.00123\n"), to say the size limit in rows.
+constexpr std::size_t kTableRowBytes = 20;
 
 std::string trimmed(const std::string& text) {
   const auto first = text.find_first_not_of(" \t\r");
@@ -44,21 +48,23 @@ std::vector<std::pair<std::string, int>> cells_of(const std::string& line) {
   return out;
 }
 
-/// Reads the table `shown_path` (opened at `path`): a header naming columns
+/// Reads the table `text` of the file `shown_path`: a header naming columns
 /// `s` and `offset` (others are ignored), or none (then the first two columns
 /// are s and offset), then one row of numbers per line,
 /// s strictly increasing. Blank lines and lines starting with '#' are skipped.
 /// @throws ir::ModelError at the table's line and column.
-void read_profile_table(const std::string& path, const std::string& shown_path, std::vector<double>& s,
+void read_profile_table(const std::string& text, const std::string& shown_path, std::vector<double>& s,
                         std::vector<double>& offset) {
-  std::ifstream in(path, std::ios::binary);
   int line_no = 0, s_col = -1, offset_col = -1;
   std::size_t width = 0;
   std::string line;
   auto fail = [&](int column, const std::string& message) {
     throw ir::ModelError(shown_path, ir::SourceLoc{line_no, column}, "profile table: " + message);
   };
-  while (std::getline(in, line)) {
+  for (std::size_t start = 0; start < text.size();) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    line.assign(text, start, end - start);
+    start = end + 1;
     ++line_no;
     const std::string text = trimmed(line);
     if (text.empty() || text[0] == '#') continue;
@@ -153,12 +159,29 @@ void ModelParser::parse_profile(const MapView& beam_view, Beam& beam) const {
     std::filesystem::path path(profile.table_file);
     if (path.is_relative()) path = std::filesystem::path(file_).parent_path() / path;
     const std::string opened = path.lexically_normal().string();
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-      view.fail(file->value_loc, view.prefixed(view.what(*file) + ": cannot read \"" + shown(profile.table_file) + "\" (looked for " +
-                                               shown(opened) + ", relative to the model file); expected a CSV "
-                                               "file with columns s and offset"));
-    read_profile_table(opened, opened, profile.table_s, profile.table_offset);
+    // Read whole and bounded: a device, or a sparse file of gigabytes that
+    // takes no disk space, is refused before it is read.
+    const CappedRead table = read_capped_file(opened, limits_.max_table_bytes, FileKinds::kRegularOnly);
+    if (table.fault == ReadFault::kTooLarge)
+      view.fail(file->value_loc,
+                view.prefixed(view.what(*file) + ": \"" + shown(profile.table_file) + "\" (" + shown(opened) + "): " +
+                              table.why + " (ParseLimits::max_table_bytes, about " +
+                              std::to_string(limits_.max_table_bytes / kTableRowBytes / 1000000) +
+                              " million rows); expected a table of s and offset"));
+    if (!table) {
+      std::string why = table.why;
+      if (why.rfind("cannot read: ", 0) == 0) why.erase(0, 13);
+      view.fail(file->value_loc, view.prefixed(view.what(*file) + ": cannot read \"" + shown(profile.table_file) +
+                                               "\" (looked for " + shown(opened) + ", relative to the model file): " +
+                                               why + "; expected a CSV file with columns s and offset"));
+    }
+    if (const auto problem = find_non_text(table.text))
+      view.fail(file->value_loc,
+                view.prefixed(view.what(*file) + ": \"" + shown(profile.table_file) + "\" is not a CSV table: " +
+                              problem->message + " at " + shown(opened) + ":" + std::to_string(problem->loc.line) +
+                              ":" + std::to_string(problem->loc.column) + "; expected text with columns s and offset"));
+    read_profile_table(table.text, opened, profile.table_s, profile.table_offset);
+    profile.table_path = opened;
     if (profile.table_s.front() > 0.0 || profile.table_s.back() < beam.length)
       view.fail(file->value_loc,
                 view.prefixed(view.what(*file) + ": \"" + shown(profile.table_file) + "\" covers s in [" +

@@ -2,17 +2,13 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <sys/stat.h>
-
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
+#include "frontend/capped_file.h"
 #include "frontend/model_overrides.h"
 #include "frontend/parse_model.h"
 #include "frontend/text_guard.h"
@@ -30,27 +26,6 @@ constexpr long kMaxPoints = 1000000;     // a sweep larger than this is a typo
 constexpr std::size_t kMaxNameLength = 128;
 // A sweep file is a few lines; its model file is bounded as any model file.
 constexpr std::size_t kMaxSweepFileBytes = std::size_t{1} << 20;
-
-/// The bytes of the regular file `path`, at most `max_bytes` of them (a device
-/// such as /dev/zero, a pipe or a folder is refused before reading: a sweep
-/// reads its files again in every point). `fail(why)` throws.
-template <class Fail>
-std::string read_regular_file(const std::string& path, std::size_t max_bytes, const Fail& fail) {
-  struct stat info {};
-  if (::stat(path.c_str(), &info) != 0) fail(std::string("cannot read: ") + std::strerror(errno));
-  if (!S_ISREG(info.st_mode)) fail("cannot read: not a regular file (a folder, a device or a pipe)");
-  if (static_cast<std::size_t>(info.st_size) > max_bytes)
-    fail("the file is " + std::to_string(info.st_size) + " bytes, more than the limit of " + std::to_string(max_bytes));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(std::string("cannot read: ") + std::strerror(errno));
-  // At most one byte past the limit, should the file grow meanwhile.
-  std::string text(max_bytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (in.bad()) fail("cannot read: I/O error");
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.size() > max_bytes) fail("the file is more than the limit of " + std::to_string(max_bytes) + " bytes");
-  return text;
-}
 
 /// The shortest text that reads back as v ("10", "0.0025", "1e-07").
 std::string shortest(double v) {
@@ -272,17 +247,18 @@ ir::Sweep parse_sweep_text(const std::string& text, const std::string& display_p
 }
 
 ir::Sweep load_sweep_file(const std::string& path) {
-  const std::string text = read_regular_file(path, kMaxSweepFileBytes, [&](const std::string& why) {
-    throw ModelError(path, {}, why + " (the sweep file)");
-  });
-  return parse_sweep_text(text, path);
+  // A sweep reads its files again in every point: a device such as /dev/zero,
+  // a pipe or a folder is refused before reading.
+  const CappedRead read = read_capped_file(path, kMaxSweepFileBytes, FileKinds::kRegularOnly);
+  if (!read) throw ModelError(path, {}, read.why + " (the sweep file)");
+  return parse_sweep_text(read.text, path);
 }
 
 std::string read_sweep_model(const ir::Sweep& sweep) {
   const std::string path = sweep_model_path(sweep);
-  return read_regular_file(path, ParseLimits{}.max_file_bytes, [&](const std::string& why) {
-    throw ModelError(sweep.source_path, sweep.model_loc, "model file '" + path + "': " + why);
-  });
+  CappedRead read = read_capped_file(path, ParseLimits{}.max_file_bytes, FileKinds::kRegularOnly);
+  if (!read) throw ModelError(sweep.source_path, sweep.model_loc, "model file '" + path + "': " + read.why);
+  return std::move(read.text);
 }
 
 std::string sweep_model_path(const ir::Sweep& sweep) {

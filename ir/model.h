@@ -214,6 +214,7 @@ struct BeamProfile {
   std::vector<double> table_s;      // kTable: m, strictly increasing, covers [0, L]
   std::vector<double> table_offset; // kTable: m, one per table_s (linear between)
   std::string table_file;           // kTable: as written, for messages
+  std::string table_path;           // kTable: the path opened (table_file against the model file's folder)
   TrackSpectrum spectrum = TrackSpectrum::kFra;  // kSpectrum
   int spectrum_class = 0;           // FRA: 1..6; German: 0 low, 1 high disturbance
   double wavelength_min = 0.0;      // m, > 0 (kSpectrum)
@@ -359,5 +360,10 @@ struct Model {
   Initial initial;
   Simulation simulation;
 };
+
+/// The files reading `model` read besides its own file: each table profile's
+/// (BeamProfile::table_path), once each, in model order. An output of a run
+/// must not land on any of them.
+std::vector<std::string> data_files(const Model& model);
 
 }  // namespace mbfe::ir

@@ -14,9 +14,20 @@
 # torque that is a 990-term sum (8,900 of the 10,000 expression nodes of
 # ParseLimits::max_expression_nodes).
 #
+# Spatial models (dimension: 3; scripts/make_spatial_tree.py): `spatial` is a
+# chain of revolute joints turning about z, y, x in turn with a point at the
+# tip of every link; `free` a chain of free joints (6 coordinates a body, the
+# most N bodies can have), a point on every link; `spatial_worst` about the
+# most the limits of a spatial model allow for N bodies (ParseLimits::
+# max_spatial_bodies, max_spatial_velocities): the `spatial` chain with its
+# first N/5 joints free (at the 50-body limit, 10 free and 40 revolute
+# joints: 100 velocity coordinates, the limit) and the 990-term torque on its
+# last link.
+#
 # Usage: scripts/compile_cost.sh [N ...]           (default 50 100 200 300 500)
 # Environment:
-#   MBFE_COST_KINDS   which chains (default "bare tip worst")
+#   MBFE_COST_KINDS   which chains (default "bare tip worst"; also spatial,
+#                     free, spatial_worst)
 #   MBFE_COST_OPT     optimisation levels to compile at (default "-O3 -O1")
 #   MBFE_COST_DIR     scratch folder (default build/compile-cost)
 #   MBFE_COST_CPU_LIMIT CPU seconds after which a compile is stopped (default 1200;
@@ -48,6 +59,15 @@ for kind in "${kinds[@]}"; do
     name="chain_$n"
     model="$dir/${kind}_$n.yaml"
     case "$kind" in
+      spatial) name="spatial_chain_$n"; python3 scripts/make_spatial_tree.py chain "$n" -o "$model" ;;
+      free) name="free_chain_$n"; python3 scripts/make_spatial_tree.py free "$n" -o "$model" ;;
+      spatial_worst)
+        name="spatial_chain_$n"
+        python3 scripts/make_spatial_tree.py chain "$n" --free $((n / 5)) -o "$model"
+        python3 -c "import sys; print('loads:\n  - {type: torque, body: link' + sys.argv[1] + ', value: [\\\"' +
+                    ' + '.join('1.%02d*sin(%d.5*t + 0.%d)' % (j % 100, j, j % 10) for j in range(1, 991)) +
+                    '\\\", 0, 0]}')" "$n" >>"$model"
+        ;;
       bare) python3 scripts/make_chain.py "$n" /dev/stdout | sed '/^    points:/d' >"$model" ;;
       tip) python3 scripts/make_chain.py "$n" "$model" >/dev/null ;;
       worst)

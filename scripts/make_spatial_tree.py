@@ -1,12 +1,18 @@
 #!/usr/bin/env python3
 """Writes spatial model files for measuring the generator (docs/performance.md).
 
-    scripts/make_spatial_tree.py chain N [-o MODEL.yaml]
+    scripts/make_spatial_tree.py chain N [--free K] [-o MODEL.yaml]
+    scripts/make_spatial_tree.py free N [-o MODEL.yaml]
     scripts/make_spatial_tree.py humanoid [-o MODEL.yaml]
 
 chain N: N links of 0.4 m hinged in series, the hinge axes taking turns about
 z, y and x (every body turns in 3D), each link a slender box of 1 kg along
-its z axis.
+its z axis; with --free K, the first K links on free joints instead.
+
+free N: N links in series, each on a free joint (6 degrees of freedom)
+relative to the one before, the most coordinates N bodies can have and the
+longest paths to the ground: the costliest model of N bodies to generate and
+compile (scripts/compile_cost.sh).
 
 humanoid: a branching tree of 35 joints shaped like a humanoid robot, a free
 joint at the pelvis (6 degrees of freedom) and 34 revolute joints: a torso
@@ -38,18 +44,33 @@ def body(name, parent, joint, mass, inertia, com, tip=None):
     return line + "}"
 
 
-def chain(n):
+def chain(n, free=0):
     lines = [f"model: spatial_chain_{n}",
-             f"description: A spatial chain of {n} links hinged about z, y, x in turn. "
+             f"description: A spatial chain of {n} links hinged about z, y, x in turn"
+             + (f", the first {free} on free joints" if free else "") + ". "
              "Written by scripts/make_spatial_tree.py.",
              "dimension: 3", "gravity: [0, 0, -9.81]", "bodies:"]
     order = "zyx"
     for i in range(n):
         parent = "ground" if i == 0 else f"link{i}"
         at = "[0, 0, 0]" if i == 0 else "[0, 0, 0.4]"
-        joint = f"{{type: revolute, axis: {AXES[order[i % 3]]}, at: {at}}}"
+        joint = (f"{{type: free, at: {at}}}" if i < free else
+                 f"{{type: revolute, axis: {AXES[order[i % 3]]}, at: {at}}}")
         lines.append(body(f"link{i + 1}", parent, joint, 1.0, box_inertia(1.0, 0.05, 0.05, 0.4), "[0, 0, 0.2]",
                           "[0, 0, 0.4]"))
+    return "\n".join(lines) + "\n"
+
+
+def free_chain(n):
+    lines = [f"model: free_chain_{n}",
+             f"description: {n} links in series, each on a free joint relative to the one before. "
+             "Written by scripts/make_spatial_tree.py.",
+             "dimension: 3", "gravity: [0, 0, -9.81]", "bodies:"]
+    for i in range(n):
+        parent = "ground" if i == 0 else f"link{i}"
+        at = "[0, 0, 0]" if i == 0 else "[0, 0, 0.4]"
+        lines.append(body(f"link{i + 1}", parent, f"{{type: free, at: {at}}}", 1.0,
+                          box_inertia(1.0, 0.05, 0.05, 0.4), "[0, 0, 0.2]", "[0, 0, 0.4]"))
     return "\n".join(lines) + "\n"
 
 
@@ -95,13 +116,17 @@ def humanoid():
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("kind", choices=["chain", "humanoid"])
+    parser.add_argument("kind", choices=["chain", "free", "humanoid"])
     parser.add_argument("n", nargs="?", type=int, help="links of a chain")
+    parser.add_argument("--free", type=int, default=0, help="chain: the first K links on free joints")
     parser.add_argument("-o", "--output")
     args = parser.parse_args()
-    if args.kind == "chain" and not args.n:
-        parser.error("chain needs N")
-    text = chain(args.n) if args.kind == "chain" else humanoid()
+    if args.kind != "humanoid" and not args.n:
+        parser.error(args.kind + " needs N")
+    if args.kind == "chain":
+        text = chain(args.n, args.free)
+    else:
+        text = free_chain(args.n) if args.kind == "free" else humanoid()
     if args.output:
         with open(args.output, "w") as f:
             f.write(text)

@@ -41,7 +41,8 @@ int cmd_generate(const Args& args) {
   if (model.bodies.empty())
     throw UsageError("model '" + model.name + "' has no bodies: beams need no generated code (try mbfe modal)");
   const gen::GeneratedSolver solver = gen::generate_solver(model);  // everything in memory first
-  for (const auto& file : solver.files) check_output_file(*out + "/" + file.name, "-o", {model_path}, true);
+  for (const auto& file : solver.files)
+    check_output_file(*out + "/" + file.name, "-o", model_inputs(model_path, model), true);
   std::filesystem::create_directories(*out);
   for (const auto& file : solver.files) write_file_atomically(*out + "/" + file.name, file.text);
   if (!parsed.has("quiet")) {

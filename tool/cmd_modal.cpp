@@ -16,6 +16,7 @@
 #include "runtime/errors/invalid_input.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
+#include "tool/file_checks.h"
 #include "tool/model_warnings_notice.h"
 #include "api/json_text.h"
 #include "tool/linearization_notice.h"
@@ -98,7 +99,12 @@ int cmd_modal(const Args& args) {
     options.sparse_modes = static_cast<int>(*k);
   }
   const std::string& path = parsed.positional()[0];
+  // The picture never lands on the model or a file it reads (gnuplot would
+  // write over it).
+  const auto plot_file = parsed.value("plot");
+  if (plot_file && !plot_file->empty()) check_output_file(*plot_file, "--plot", {path});
   const ir::Model m = frontend::load_model_file(path);
+  if (plot_file && !plot_file->empty()) check_output_file(*plot_file, "--plot", model_inputs(path, m));
   const std::vector<std::string> warnings = announce_model_warnings(m);
   if (m.beams.empty()) {
     std::cerr << "mbfe modal: " << path << ": model '" << m.name

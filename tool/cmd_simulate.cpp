@@ -98,9 +98,10 @@ Options:
                      its rows kept
   --quiet            no progress or cache messages on stderr
 
-An output (--out, its sidecar, the --vtk folder) that is the model file, a
-folder where a file goes (or a file where the folder goes), or in a folder
-that does not exist is bad input, refused before the model is read.
+An output (--out, its sidecar, the --vtk folder and its files) that is the
+model file or a file it reads (a profile table), a folder where a file goes
+(or a file where the folder goes), or in a folder that does not exist is bad
+input, refused before the solver is compiled.
 
 Exit status: 0 done; 2 bad input; 3 the simulation diverged or failed part-way
 (everything computed up to there is in the output, flushed).
@@ -222,13 +223,26 @@ int cmd_simulate(const Args& args) {
   }
   if (parsed.positional().size() != 1) throw UsageError("expected one model file (see --help)");
   const std::string& model_path = parsed.positional()[0];
-  // Every output checked before the model is even read: never over the model
-  // file (whatever the names), never into a missing folder or onto a folder.
+  // Every output checked before the model is even read (never over the model
+  // file, whatever the names; never into a missing folder or onto a folder),
+  // and again once it is read against every file it read (profile tables),
+  // before its solver is compiled.
   const auto out = parsed.value("out");
-  if (out && !out->empty()) {
-    check_output_file(*out, "--out", {model_path});
-    check_output_file(*out + ".json", "--out (its sidecar)", {model_path});
-  }
+  const auto vtk_dir = parsed.value("vtk");
+  const auto check_outputs = [&](const std::vector<std::string>& inputs, const ir::Model* read) {
+    if (out && !out->empty()) {
+      check_output_file(*out, "--out", inputs);
+      check_output_file(*out + ".json", "--out (its sidecar)", inputs);
+    }
+    if (!vtk_dir) return;
+    check_output_folder(*vtk_dir, "--vtk", inputs);
+    if (!read) return;  // the collection is named after the model
+    check_output_file((std::filesystem::path(*vtk_dir) / (read->name + ".pvd")).string(), "--vtk", inputs, true);
+    const std::string frames_dir = (std::filesystem::path(*vtk_dir) / "frames").string();
+    check_output_folder(frames_dir, "--vtk", inputs);
+    check_folder_holds_no_input(frames_dir, "--vtk", inputs);
+  };
+  check_outputs({model_path}, nullptr);
   if (const auto probe = parsed.value("probe")) {
     const std::vector<std::string> labels = split_commas(*probe);
     for (std::size_t i = 0; i < labels.size(); ++i)
@@ -236,10 +250,8 @@ int cmd_simulate(const Args& args) {
         if (labels[i] == labels[j])
           throw UsageError("--probe: '" + labels[i] + "' is given twice; each probe is a column and needs a name of its own");
   }
-  const auto vtk_dir = parsed.value("vtk");
   const double frames = parsed.number("vtk-frames").value_or(200.0);
   if (vtk_dir) {
-    check_output_folder(*vtk_dir, "--vtk", {model_path});
     if (!(frames >= 1) || frames != std::floor(frames)) throw UsageError("--vtk-frames must be a positive whole number");
     if (frames > kMaxVtkFrames)
       throw UsageError("--vtk-frames: at most " + std::to_string(kMaxVtkFrames) + " frames (a file each), got " +
@@ -250,15 +262,13 @@ int cmd_simulate(const Args& args) {
   LoadOptions load;
   load.quiet = parsed.has("quiet");
   load.overrides = model_overrides(parsed);
+  load.on_read = [&](const ir::Model& read) { check_outputs(model_inputs(model_path, read), &read); };
   const Model model = Model::load(model_path, load);
   // Likely unit mistakes, before a run that may take long (and again in the sidecar).
   for (const std::string& w : model_warnings(model.ir())) std::cerr << w << "\n";
   runtime::SimulationRequest request = request_of(parsed, model);
   std::unique_ptr<VtkAnimation> vtk;
   if (vtk_dir) {
-    check_output_file((std::filesystem::path(*vtk_dir) / (model.ir().name + ".pvd")).string(), "--vtk", {model_path},
-                      true);
-    check_output_folder((std::filesystem::path(*vtk_dir) / "frames").string(), "--vtk", {model_path});
     const double scale = parsed.number("vtk-scale").value_or(1.0);
     request.state_in_rows = true;  // the frames need every coordinate
     vtk = std::make_unique<VtkAnimation>(model, *vtk_dir, scale, static_cast<int>(frames), request.t_end);
@@ -296,8 +306,7 @@ int cmd_simulate(const Args& args) {
     // Ctrl-C, SIGTERM, SIGHUP: the run stops before its next step, whole
     // rows written and the record beside them says so (exit status 3).
     const InterruptGuard interrupts;
-    ProgressLine progress(!quiet, request.t_end,
-                          static_cast<std::int64_t>(std::ceil(request.t_end / request.step - 1e-9)));
+    ProgressLine progress(!quiet, request.t_end);
     const runtime::StepMonitor keep_going = [&](double t, std::int64_t steps) {
       progress.update(t, steps);
       return !InterruptGuard::interrupted();

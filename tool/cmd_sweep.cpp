@@ -223,11 +223,23 @@ int cmd_sweep(const Args& args) {
       frontend::overridden_sweep_model(sweep, frontend::read_sweep_model(sweep), model_overrides(parsed));
   frontend::check_sweep_paths(sweep, model_text);
   const long n = sweep.points();
-  // The summary and the points go into DIR: it must be a folder, and its
-  // summary must not be one of the sweep's own files.
-  check_output_folder(*out, "--out", {sweep_file, model_path});
+  // The summary and the points go into DIR: it must be a folder, its summary
+  // must not be one of the sweep's own files (the sweep file, the model, the
+  // files the model reads), and none of them may lie in the folders mbfe fills.
+  std::vector<std::string> inputs{sweep_file, model_path};
+  try {
+    // The files the model reads, as its first point has it (the model file
+    // alone may hold values only the points make valid).
+    const ir::Model first = frontend::parse_model_text(frontend::point_model_text(sweep, model_text, 0), model_path);
+    for (std::string& file : ir::data_files(first)) inputs.push_back(std::move(file));
+  } catch (const ir::ModelError&) {
+    // A point's own run reports what is wrong with its model.
+  }
+  check_output_folder(*out, "--out", inputs);
   for (const char* name : {"summary.csv", "summary.json"})
-    check_output_file((fs::path(*out) / name).string(), "--out", {sweep_file, model_path}, true);
+    check_output_file((fs::path(*out) / name).string(), "--out", inputs, true);
+  for (const char* folder : {"points", "slurm"})
+    check_folder_holds_no_input((fs::path(*out) / folder).string(), "--out", inputs);
   SlurmOptions slurm;
   if (parsed.has("slurm")) {
     slurm.partition = parsed.value("partition").value_or("");

@@ -61,4 +61,28 @@ void check_output_folder(const std::string& dir, const std::string& flag, const 
     throw UsageError(flag + " " + dir + ": exists and is not a folder (the output goes into a folder)");
 }
 
+void check_folder_holds_no_input(const std::string& dir, const std::string& flag,
+                                 const std::vector<std::string>& inputs) {
+  struct stat folder {};
+  if (::stat(dir.c_str(), &folder) != 0) return;
+  for (const std::string& input : inputs) {
+    std::error_code ec;
+    const fs::path real = fs::weakly_canonical(fs::absolute(input, ec), ec);
+    if (ec) continue;
+    for (fs::path up = real.parent_path(); !up.empty(); up = up.parent_path()) {
+      struct stat info {};
+      if (::stat(up.c_str(), &info) == 0 && info.st_dev == folder.st_dev && info.st_ino == folder.st_ino)
+        throw UsageError(flag + " " + dir + ": that folder holds the input " + input +
+                         ", and mbfe writes files of its own naming there; put the input elsewhere");
+      if (up == up.root_path()) break;
+    }
+  }
+}
+
+std::vector<std::string> model_inputs(const std::string& model_path, const ir::Model& model) {
+  std::vector<std::string> inputs{model_path};
+  for (std::string& file : ir::data_files(model)) inputs.push_back(std::move(file));
+  return inputs;
+}
+
 }  // namespace mbfe::tool

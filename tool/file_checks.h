@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "ir/model.h"
+
 namespace mbfe::tool {
 
 /// Refuses a file that cannot be read as a stream of bytes: one that does not
@@ -30,5 +32,17 @@ void check_output_file(const std::string& path, const std::string& flag, const s
 /// (it is created).
 /// @throws UsageError "<flag> <dir>: ..." .
 void check_output_folder(const std::string& dir, const std::string& flag, const std::vector<std::string>& inputs);
+
+/// Refuses when one of `inputs` lies inside the folder `dir` (at any depth,
+/// symbolic links followed): a folder the command fills with files of its
+/// own naming (the --vtk frames, a sweep's points), which could replace it.
+/// A folder that does not exist yet holds nothing.
+/// @throws UsageError "<flag> <dir>: ..." .
+void check_folder_holds_no_input(const std::string& dir, const std::string& flag,
+                                 const std::vector<std::string>& inputs);
+
+/// The model file `model_path` and the files reading it read besides (its
+/// profile tables, ir::data_files): what no output of a run may overwrite.
+std::vector<std::string> model_inputs(const std::string& model_path, const ir::Model& model);
 
 }  // namespace mbfe::tool

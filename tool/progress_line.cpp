@@ -19,19 +19,18 @@ constexpr double kPlainEvery = 30.0;
 
 }  // namespace
 
-ProgressLine::ProgressLine(bool enabled, double t_end, std::int64_t total)
-    : enabled_(enabled), terminal_(isatty(fileno(stderr)) != 0), t_end_(t_end), total_(total),
-      start_(Clock::now()), last_(start_) {}
+ProgressLine::ProgressLine(bool enabled, double t_end)
+    : enabled_(enabled), terminal_(isatty(fileno(stderr)) != 0), t_end_(t_end), start_(Clock::now()), last_(start_) {}
 
 void ProgressLine::update(double t, std::int64_t steps) {
-  if (!enabled_ || steps % kCheckEvery != 0 || steps == 0) return;
+  if (!enabled_ || steps % kCheckEvery != 0 || steps == 0 || !(t > 0.0)) return;
   const auto now = Clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double since = std::chrono::duration<double>(now - last_).count();
   if (elapsed < kQuietSeconds || since < (terminal_ ? kTerminalRefresh : kPlainEvery)) return;
   last_ = now;
-  const double left = elapsed * static_cast<double>(std::max<std::int64_t>(total_ - steps, 0)) / static_cast<double>(steps);
-  const double percent = 100.0 * static_cast<double>(steps) / static_cast<double>(std::max<std::int64_t>(total_, 1));
+  const double left = elapsed * std::max(t_end_ - t, 0.0) / t;
+  const double percent = 100.0 * std::min(t / t_end_, 1.0);
   if (terminal_) {
     std::fprintf(stderr, "\r  t = %.4g s of %.4g s (%.0f %%), about %.0f s left   ", t, t_end_, percent, left);
     shown_ = true;

@@ -11,8 +11,11 @@ namespace mbfe::tool {
 
 class ProgressLine {
  public:
-  /// `enabled`: false for --quiet. t_end in s; `total` steps.
-  ProgressLine(bool enabled, double t_end, std::int64_t total);
+  /// `enabled`: false for --quiet. The run goes from t = 0 to t_end (s) in
+  /// steps of equal length, so the share done is t / t_end (no step count
+  /// is needed, which may be beyond what an int64 holds before the run
+  /// refuses it).
+  ProgressLine(bool enabled, double t_end);
   /// After step `steps`, at simulated time t (s).
   void update(double t, std::int64_t steps);
   /// Clears the refreshed line, if one was shown.
@@ -22,7 +25,6 @@ class ProgressLine {
   using Clock = std::chrono::steady_clock;
   bool enabled_, terminal_;
   double t_end_;
-  std::int64_t total_;
   Clock::time_point start_, last_;
   bool shown_ = false;
 };

@@ -72,6 +72,19 @@ double FixedStepRun::time_of(std::int64_t k) const {
   return (k == total_ && partial_last_) ? options_.t_end : options_.t0 + static_cast<double>(k) * h_;
 }
 
+std::int64_t FixedStepRun::last_step_by(double t) const {
+  const std::int64_t from = result_.steps;
+  const double x = (t - options_.t0) / h_;
+  std::int64_t k = from;
+  if (x >= static_cast<double>(total_)) k = total_;
+  else if (x > static_cast<double>(from)) k = static_cast<std::int64_t>(std::floor(x));  // < total_ <= 2^53
+  // x is off by rounding from the grid t0 + k h (and the last step of a
+  // one-step method ends at t_end, short of it): a step or so either way.
+  while (k < total_ && time_of(k + 1) <= t) ++k;
+  while (k > from && time_of(k) > t) --k;
+  return k;
+}
+
 bool FixedStepRun::step() {
   if (finished()) return false;
   if (options_.keep_going && !options_.keep_going(t_, result_.steps)) {

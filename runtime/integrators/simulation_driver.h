@@ -104,6 +104,11 @@ class FixedStepRun {
   double step_size() const { return h_; }
   /// The time step k ends at.
   double time_of(std::int64_t k) const;
+  /// The last step, from the steps taken to total_steps(), that ends at or
+  /// before t: the largest such k with time_of(k) <= t, or steps() when the
+  /// next step ends after t (or t is NaN). Found from (t - t0) / h and
+  /// corrected against time_of, in a few operations however far t is.
+  std::int64_t last_step_by(double t) const;
   /// Reached t_end, or stopped (failed, diverged, interrupted).
   bool finished() const { return result_.steps >= total_ || result_.status != SimulationStatus::kCompleted; }
   /// Takes the next step (after asking keep_going): true if it was accepted;

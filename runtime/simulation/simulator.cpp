@@ -70,11 +70,9 @@ SimulationStatus Simulator::advance_steps(std::int64_t n, const StepMonitor& kee
 }
 
 SimulationStatus Simulator::advance_to(double t, const StepMonitor& keep_going) {
-  // The steps whose end is at or before t.
-  std::int64_t target = steps_->steps();
-  while (target < steps_->total_steps() &&
-         steps_->time_of(target + 1) <= t + kGridSlack * steps_->step_size())
-    ++target;
+  // The steps whose end is at or before t, computed, not counted: with 1e9
+  // steps ahead counting them one by one took seconds before the first step.
+  const std::int64_t target = steps_->last_step_by(t + kGridSlack * steps_->step_size());
   return advance_steps(target - steps_->steps(), keep_going);
 }
 

@@ -44,7 +44,8 @@
 // - output columns that would share a name: output_name_t, output_name_phi_abs,
 //   output_name_rate_clash (bodies a and a_dot), output_name_drive_clash,
 //   output_name_beam_coordinate (a body deck_w3 beside beam deck),
-//   output_name_contact_force, output_name_pin_multiplier, output_name_link_tension
+//   output_name_contact_force, output_name_pin_multiplier, output_name_link_tension,
+//   output_name_loop_residual (a body so named in a model with closed loops)
 // - spatial models and closed loops: spatial_zero_axis, spatial_inertia_triangle,
 //   spatial_with_beam, constraint_same_body
 // - expressions in t whose constant parts have no value: expression_division_by_zero,

@@ -213,5 +213,64 @@ TEST(ParseSpatialModel, RefusesABodyNamedLikeAQuaternionCoordinate) {
             "name at line 4");
 }
 
+TEST(ParseSpatialModel, OutputColumnsFollowWhatEachJointWrites) {
+  // A spherical or free joint writes <body>_qw.. and <body>_wx.. (no <body>
+  // and no <body>_dot column): bodies b and b_dot beside it were refused as a
+  // clash of two b_dot columns, and so was a spherical a_dot beside a
+  // revolute a.
+  const std::string inertia = "mass: 1, inertia: [1, 1, 1, 0, 0, 0]}\n";
+  EXPECT_EQ(error_of(spatial("  - {name: b, parent: ground, joint: {type: spherical}, " + inertia +
+                             "  - {name: b_dot, parent: b, joint: {type: revolute, axis: [0, 0, 1]}, " + inertia +
+                             "  - {name: c, parent: ground, joint: {type: free}, " + inertia +
+                             "  - {name: c_dot, parent: c, joint: {type: prismatic, axis: [1, 0, 0]}, " + inertia +
+                             "  - {name: a, parent: ground, joint: {type: revolute, axis: [0, 1, 0]}, " + inertia +
+                             "  - {name: a_dot, parent: a, joint: {type: spherical}, " + inertia)),
+            "(accepted)");
+  // The columns that would be written twice still are refused: a revolute
+  // a_dot beside a revolute a (the rate of a); a body named loop_residual in
+  // a model with closed loops: tests/malformed/output_name_loop_residual.yaml.
+  EXPECT_EQ(error_of(spatial("  - {name: a, parent: ground, joint: {type: revolute, axis: [0, 1, 0]}, " + inertia +
+                             "  - {name: a_dot, parent: a, joint: {type: revolute, axis: [1, 0, 0]}, " + inertia)),
+            "models/x.yaml:5:12: body 'a_dot' (its coordinate) writes the column 'a_dot', which body 'a' (its rate) "
+            "(line 4) writes too; output columns need distinct names: rename one");
+}
+
+/// n bodies in series on revolute joints, the first n_free on free joints.
+std::string spatial_chain(int n, int n_free) {
+  std::string bodies;
+  for (int i = 1; i <= n; ++i)
+    bodies += "  - {name: l" + std::to_string(i) + ", parent: " + (i == 1 ? "ground" : "l" + std::to_string(i - 1)) +
+              ", joint: {type: " + (i <= n_free ? "free" : "revolute, axis: [0, 0, 1]") +
+              "}, mass: 1, inertia: [1, 1, 1, 0, 0, 0]}\n";
+  return spatial(bodies);
+}
+
+TEST(ParseSpatialModel, BodiesAndVelocitiesAreBoundedByTheCompileCost) {
+  // A 200-joint spatial chain (within the planar limit of 200 bodies) made
+  // 12 MB of C++ that takes minutes to compile; the spatial limits keep the
+  // largest model they allow near the planar limit's compile time.
+  const ParseLimits limits;
+  ASSERT_EQ(limits.max_spatial_bodies, 50);
+  ASSERT_EQ(limits.max_spatial_velocities, 100);
+  EXPECT_EQ(error_of(spatial_chain(50, 0)), "(accepted)");
+  EXPECT_EQ(error_of(spatial_chain(50, 10)), "(accepted)");  // 10 x 6 + 40 = 100 velocities
+  EXPECT_EQ(error_of(spatial_chain(51, 0)),
+            "models/x.yaml:4:3: bodies: 51 entries, more than the limit of 50 (ParseLimits::max_spatial_bodies) of a "
+            "spatial model: its generated solver would take too long to compile (docs/performance.md, \"Model size "
+            "and compile time\")");
+  // The 17th free joint brings 102 velocities: refused at that body.
+  EXPECT_EQ(error_of(spatial_chain(17, 17)),
+            "models/x.yaml:20:5: body 'l17': the joints up to here have 102 velocity coordinates (a free joint 6, a "
+            "spherical one 3, the others 1), more than the limit of 100 (ParseLimits::max_spatial_velocities) of a "
+            "spatial model: its generated solver would take too long to compile (docs/performance.md, \"Model size "
+            "and compile time\")");
+  // A planar chain keeps the planar limit.
+  std::string planar = "model: m\nbodies:\n";
+  for (int i = 1; i <= 100; ++i)
+    planar += "  - {name: l" + std::to_string(i) + ", parent: " + (i == 1 ? "ground" : "l" + std::to_string(i - 1)) +
+              ", joint: {type: revolute}, mass: 1, inertia: 1}\n";
+  EXPECT_EQ(error_of(planar), "(accepted)");
+}
+
 }  // namespace
 }  // namespace mbfe::frontend

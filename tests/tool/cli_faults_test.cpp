@@ -1,11 +1,13 @@
 // Faults at the command line, through the real `mbfe` binary: numerical
 // failures keep the output written so far (flushed, whole lines) and exit with
-// status 3; Ctrl-C stops cleanly; bad flags, a missing model file, an
-// unwritable --out, an output that would overwrite the model, a --vtk folder
-// that is a file and too many frames exit with status 2 and say what is wrong;
-// a path that is not UTF-8 still gets its sidecar.
+// status 3; Ctrl-C, SIGTERM and SIGHUP stop cleanly, the sidecar written; bad
+// flags, a missing model file, an unwritable --out, an output that would
+// overwrite the model, a --vtk folder that is a file and too many frames exit
+// with status 2 and say what is wrong; a path that is not UTF-8 still gets its
+// sidecar.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
 #include <sys/stat.h>
 
 #include <csignal>
@@ -139,6 +141,12 @@ TEST_F(CliFaults,
     const std::size_t rows = check_complete_csv(text);
     EXPECT_GE(rows, 10u);
     EXPECT_EQ(static_cast<long>(rows), rows_in_message(err)) << err;
+    // The record beside the CSV is written too, says how the run ended and
+    // counts the rows the CSV holds.
+    const nlohmann::json record = nlohmann::json::parse(slurp(csv.string() + ".json"), nullptr, false);
+    ASSERT_TRUE(record.is_object()) << slurp(csv.string() + ".json");
+    EXPECT_EQ(record.value("status", ""), "interrupted");
+    EXPECT_EQ(record.value("rows", -1L), static_cast<long>(rows));
   }
 }
 

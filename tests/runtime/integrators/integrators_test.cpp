@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "runtime/integrators/integrator.h"
 #include "runtime/integrators/simulation_driver.h"
@@ -270,6 +271,68 @@ TEST(Driver, AStepCountBeyondTwoToThe53IsRefused) {
     EXPECT_NE(what.find("needs 1e+19 steps"), std::string::npos) << what;
     EXPECT_NE(what.find("more than the limit of 9007199254740992 (2^53)"), std::string::npos) << what;
   }
+}
+
+/// The oracle for last_step_by: what Simulator::advance_to did before, count
+/// from the steps taken while the next step ends at or before t.
+std::int64_t counted_last_step(const FixedStepRun& run, double t) {
+  std::int64_t k = run.steps();
+  while (k < run.total_steps() && run.time_of(k + 1) <= t) ++k;
+  return k;
+}
+
+TEST(Driver, LastStepByLandsWhereCountingTheStepsDid) {
+  struct Case {
+    double t0, step, t_end;
+    const char* integrator;
+    int taken;  // steps taken before asking
+  };
+  // 0.1 is not a double: 3 * 0.1 > 0.3; a partial last step (rk4) and none
+  // (ab2 stops at the last full step); a run from t0 > 0 part-way through;
+  // 1e6 steps, where t0 + k h has drifted from k * 1e-4 by many ulps.
+  const std::vector<Case> cases = {{0.0, 0.1, 1.0, "rk4", 0},     {0.0, 0.1, 1.05, "rk4", 0},
+                                   {0.0, 0.1, 1.05, "ab2", 0},    {0.3, 1e-3, 2.0, "rk4", 7},
+                                   {0.0, 1e-4, 100.0, "rk4", 3}};
+  Scalar sys({-1e-3, 0.0});
+  for (const Case& c : cases) {
+    SimulationOptions opt;
+    opt.t0 = c.t0;
+    opt.step = c.step;
+    opt.t_end = c.t_end;
+    FixedStepRun run(sys, parse_integrator(c.integrator), Eigen::Vector2d(1, 0), opt);
+    for (int k = 0; k < c.taken; ++k) ASSERT_TRUE(run.step());
+    const std::int64_t total = run.total_steps();
+    std::vector<double> times = {-1.0, c.t0, c.t_end, c.t_end + c.step, 1e300, INFINITY, -INFINITY, NAN};
+    for (const std::int64_t k : {std::int64_t{0}, std::int64_t{1}, std::int64_t{2}, std::int64_t{3}, std::int64_t{7},
+                                 total / 3, total / 2, total - 2, total - 1, total}) {
+      if (k < 0 || k > total) continue;
+      const double on = run.time_of(k);
+      // On the grid, a hair either side, with Simulator::advance_to's slack,
+      // between two steps, and as a decimal that misses the grid (k * h).
+      for (const double t : {on, std::nextafter(on, -INFINITY), std::nextafter(on, INFINITY), on + 1e-9 * c.step,
+                             on + 0.5 * c.step, c.t0 + static_cast<double>(k) * c.step, static_cast<double>(k) * c.step})
+        times.push_back(t);
+    }
+    for (const double t : times)
+      EXPECT_EQ(run.last_step_by(t), counted_last_step(run, t))
+          << c.integrator << " h = " << c.step << " t_end = " << c.t_end << " t = " << t;
+  }
+}
+
+TEST(Driver, LastStepByFindsAStepFarAheadAtOnce) {
+  // 1e15 steps of 1e-12 s: counting to t = 0.5 s would take hours. The step
+  // found is the one the definition names: it ends at or before t, the next after.
+  Scalar sys({-1e-3, 0.0});
+  SimulationOptions opt;
+  opt.step = 1e-12;
+  opt.t_end = 1e3;
+  FixedStepRun run(sys, parse_integrator("rk4"), Eigen::Vector2d(1, 0), opt);
+  for (const double t : {0.5, 0.123456789, 999.999999999}) {
+    const std::int64_t k = run.last_step_by(t);
+    EXPECT_LE(run.time_of(k), t) << t;
+    EXPECT_GT(run.time_of(k + 1), t) << t;
+  }
+  EXPECT_EQ(run.last_step_by(2e3), run.total_steps());
 }
 
 TEST(Parse, NamesAndErrors) {
