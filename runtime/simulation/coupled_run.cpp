@@ -55,6 +55,16 @@ std::vector<std::string> multiplier_names(const ir::Model& model) {
   return out;
 }
 
+/// Per beam coordinate of q_c: whether it is a slope w' (an odd DOF of its
+/// node), told by its place in the mesh, not by its name.
+std::vector<bool> beam_slopes(const CoupledModel& model) {
+  std::vector<bool> out(static_cast<std::size_t>(model.nc()), false);
+  for (const CoupledBeam& b : model.beams())
+    for (std::size_t full = 0; full < b.mesh.full_to_free.size(); ++full)
+      if (const int f = b.mesh.full_to_free[full]; f >= 0) out[static_cast<std::size_t>(b.offset + f)] = full % 2 != 0;
+  return out;
+}
+
 /// The integrators that step the index-3 form (coupled_implicit_system.h).
 bool second_order_implicit(const IntegratorSpec& spec) {
   if (spec.kind == IntegratorKind::kBackwardEuler || spec.kind == IntegratorKind::kTrapezoid ||
@@ -118,6 +128,7 @@ class CoupledRun final : public ModelRun {
       throw InvalidInput(model.ir().source_path + ": inconsistent initial state: " + e.what());
     }
     names_ = dynamics_->model().coordinate_names();
+    slopes_ = beam_slopes(dynamics_->model());
     {
       // An initial state off the constraints is projected onto them: say so.
       Eigen::VectorXd q(n), qd(n);
@@ -327,12 +338,14 @@ class CoupledRun final : public ModelRun {
       if (os.tellp() > 0) os << ", ";
       const std::string& name = names_.empty() ? dynamics_->model().coordinate_names()[i] : names_[i];
       os << name << " by " << std::showpos << moved << std::noshowpos;
-      const std::string unit = i < nb ? coordinate_unit(model_.ir().bodies[i])
-                                      : beam_coordinate_unit(name.find("_dw") != std::string::npos);
+      const std::string unit = i < nb ? coordinate_unit(model_.ir().bodies[i]) : beam_coordinate_unit(is_slope(i));
       if (unit != "1") os << " " << unit;
     }
     return os.str();
   }
+
+  /// Coordinate i of [q_b; q_c], a beam's, is a slope.
+  bool is_slope(Eigen::Index i) const { return slopes_[static_cast<std::size_t>(i - dynamics_->nb())]; }
 
   void build_layout() {
     const int nb = dynamics_->nb(), n = dynamics_->n();
@@ -344,7 +357,7 @@ class CoupledRun final : public ModelRun {
     }
     if (probes_.empty()) {
       for (int i = nb; i < n; ++i) {
-        const bool slope = names_[i].find("_dw") != std::string::npos;
+        const bool slope = is_slope(i);
         positions.push_back(names_[i]);
         units.push_back(beam_coordinate_unit(slope));
         rate_units.push_back(beam_rate_unit(slope));
@@ -405,6 +418,7 @@ class CoupledRun final : public ModelRun {
   std::vector<BeamProbe> probes_;
   std::vector<int> probe_dofs_;
   std::vector<std::string> names_;
+  std::vector<bool> slopes_;  // per beam coordinate
   Eigen::VectorXd q0_, qd0_, q_, qd_, reactions_;
   std::unique_ptr<ContactTallies> tallies_;
   // The last accepted state, and scratch for the springs' points there.
