@@ -58,8 +58,8 @@ std::string yaml_message(const YAML::Exception& error) {
 
 }  // namespace
 
-Model parse_model_text(const std::string& text, const std::string& display_path,
-                       const ParseLimits& limits, const ir::ModelOverrides& overrides) {
+Model parse_model_text(const std::string& text, const std::string& display_path, const ParseLimits& limits,
+                       const ir::ModelOverrides& overrides, std::string* expanded) {
   if (text.size() > limits.max_file_bytes) {
     throw ModelError(display_path, {1, 1},
                      "the file is " + std::to_string(text.size()) +
@@ -91,6 +91,11 @@ Model parse_model_text(const std::string& text, const std::string& display_path,
     } catch (const ModelError& error) {
       throw blame_override(error, applied);
     }
+    if (expanded) {
+      YAML::Emitter out;
+      out << root;
+      *expanded = std::string(out.c_str()) + "\n";
+    }
     return model;
   } catch (const ModelError&) {
     throw;
@@ -104,6 +109,10 @@ Model parse_model_text(const std::string& text, const std::string& display_path,
 }
 
 Model load_model_file(const std::string& path, const ParseLimits& limits, const ir::ModelOverrides& overrides) {
+  return parse_model_text(read_model_file(path, limits), path, limits, overrides);
+}
+
+std::string read_model_file(const std::string& path, const ParseLimits& limits) {
   struct stat info {};
   if (::stat(path.c_str(), &info) != 0) {
     throw ModelError(path, {}, std::string("cannot read: ") + std::strerror(errno));
@@ -127,7 +136,7 @@ Model load_model_file(const std::string& path, const ParseLimits& limits, const 
     text.append(buffer.data(), static_cast<std::size_t>(in.gcount()));
   }
   if (in.bad()) throw ModelError(path, {}, "cannot read: I/O error");
-  return parse_model_text(text, path, limits, overrides);
+  return text;
 }
 
 }  // namespace mbfe::frontend

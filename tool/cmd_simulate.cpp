@@ -322,6 +322,7 @@ int cmd_simulate(const Args& args) {
                 << model.ir().name << ".pvd\n";
   }
   nlohmann::json record = run_record(model, request, report, results.layout(), csv.rows());
+  record["set"] = parsed.values("set");  // the --set values the run's model has, "PATH=VALUE" each, in order
   for (const std::string& w : run_warnings(model.ir(), report)) std::cerr << "mbfe: warning: " << w << "\n";
   if (check_until && report.message.empty()) {
     const AdjustmentCheck check = check_adjustment(model, request, kept, *check_until);
