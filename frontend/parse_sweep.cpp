@@ -131,15 +131,40 @@ ir::SweepVariable parse_variable(const MapView& view) {
 }
 
 ir::SweepCollect parse_collect(const MapView& view) {
-  view.allow({"name", "column", "stat"});
+  view.allow({"name", "column", "stat", "lowpass", "order", "from", "to"});
   ir::SweepCollect c;
   c.loc = view.loc();
   c.name = view.identifier(view.require("name"), kMaxNameLength);
   c.column = view.text(view.require("column"));
-  constexpr ir::SweepStat kStats[] = {ir::SweepStat::kMax,  ir::SweepStat::kMin,     ir::SweepStat::kAbsMax,
-                                      ir::SweepStat::kMean, ir::SweepStat::kRms,     ir::SweepStat::kInitial,
-                                      ir::SweepStat::kFinal};
-  c.stat = kStats[view.choice(view.require("stat"), {"max", "min", "absmax", "mean", "rms", "initial", "final"})];
+  constexpr ir::SweepStat kStats[] = {ir::SweepStat::kMax,
+                                      ir::SweepStat::kMin,
+                                      ir::SweepStat::kAbsMax,
+                                      ir::SweepStat::kMean,
+                                      ir::SweepStat::kRms,
+                                      ir::SweepStat::kInitial,
+                                      ir::SweepStat::kFinal,
+                                      ir::SweepStat::kStd,
+                                      ir::SweepStat::kStatisticalMax,
+                                      ir::SweepStat::kStatisticalMin,
+                                      ir::SweepStat::kLossPercent};
+  const Field& stat = view.require("stat");
+  c.stat = kStats[view.choice(stat, {"max", "min", "absmax", "mean", "rms", "initial", "final", "std",
+                                     "statistical_max", "statistical_min", "loss_percent"})];
+  if (const Field* f = view.find("lowpass")) c.lowpass_hz = view.positive(*f);
+  if (const Field* f = view.find("order")) {
+    const long long order = view.whole_number(*f);
+    if (order < 1 || order > 8)
+      view.fail(f->value_loc, view.prefixed("order must be a whole number 1..8 (got " + std::to_string(order) + ")"));
+    if (c.lowpass_hz == 0.0)
+      view.fail(f->value_loc, view.prefixed("order is the low-pass filter's: give lowpass (Hz) too"));
+    c.order = static_cast<int>(order);
+  }
+  if (const Field* f = view.find("from")) c.from = view.number(*f);
+  if (const Field* f = view.find("to")) c.to = view.number(*f);
+  if (c.from && c.to && *c.from > *c.to)
+    view.fail(view.find("from")->value_loc, view.prefixed("from must not be after to"));
+  if (c.as_stats() && (c.stat == ir::SweepStat::kInitial || c.stat == ir::SweepStat::kFinal))
+    view.fail(stat.value_loc, view.prefixed("stat initial and final take the rows as written: no lowpass, from or to"));
   return c;
 }
 

@@ -86,8 +86,14 @@ std::string request_sha256(const ir::Sweep& sweep, const std::string& point_text
   // Only when set, so that the requests of sweeps written before it keep their hash.
   if (s.full_state) j["simulate"]["full_state"] = true;
   nlohmann::json collect = nlohmann::json::array();
-  for (const ir::SweepCollect& c : sweep.collect)
-    collect.push_back({{"name", c.name}, {"column", c.column}, {"stat", static_cast<int>(c.stat)}});
+  for (const ir::SweepCollect& c : sweep.collect) {
+    nlohmann::json entry = {{"name", c.name}, {"column", c.column}, {"stat", static_cast<int>(c.stat)}};
+    // Only when given, so that the requests of sweeps written before them keep their hash.
+    if (c.lowpass_hz > 0.0) entry["lowpass"] = {c.lowpass_hz, c.order};
+    if (c.from) entry["from"] = *c.from;
+    if (c.to) entry["to"] = *c.to;
+    collect.push_back(entry);
+  }
   j["collect"] = collect;
   return frontend::sha256_hex(json_text(j));
 }
@@ -148,10 +154,16 @@ PointResult run_sweep_point(const ir::Sweep& sweep, const std::string& model_tex
     SweepStatsObserver observer(sweep, model.ir(), csv);
     const runtime::SimulationReport report = model.simulate(request_of(sweep, model), observer);
     csv.flush();
-    r.stats = observer.stats();
+    std::vector<std::string> refused;
+    r.stats = observer.stats(&refused);
     r.done = report.message.empty();
     r.exit_status = r.done ? 0 : 3;
     r.message = report.message;
+    if (r.done && !refused.empty()) {  // a statistic `mbfe stats` refuses: the request cannot be met
+      r.done = false;
+      r.exit_status = 2;
+      for (const std::string& why : refused) r.message += (r.message.empty() ? "" : "; ") + why;
+    }
   } catch (const ir::ModelError& e) {
     r.exit_status = 2;
     r.message = e.what();

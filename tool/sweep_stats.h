@@ -21,7 +21,9 @@ bool is_beam_coordinate(const ir::Model& model, const std::string& column);
 
 /// The run's rows into run.csv (without the beams' coordinates unless the
 /// sweep asks for full_state), and the statistics of the collected columns
-/// (over every column).
+/// (over every column): over the rows as written, or, for an entry with a
+/// low-pass filter, a window or an EN 50318 statistic, by the code of
+/// `mbfe stats` (runtime/signal/force_statistics.h) on the column's samples.
 class SweepStatsObserver : public runtime::SimulationObserver {
  public:
   SweepStatsObserver(const ir::Sweep& sweep, const ir::Model& model, ResultsOutput& csv)
@@ -31,8 +33,10 @@ class SweepStatsObserver : public runtime::SimulationObserver {
   void begin(const runtime::OutputLayout& layout) override;
   void row(const runtime::OutputRow& row) override;
 
-  /// One value per collect entry, NaN where there were no rows.
-  std::vector<double> stats() const;
+  /// One value per collect entry, NaN where there were no rows. An entry the
+  /// statistics of `mbfe stats` refuse (uneven rows under a filter, an empty
+  /// window) is NaN too, and `errors` (when given) gets "collect 'x': why".
+  std::vector<double> stats(std::vector<std::string>* errors = nullptr) const;
 
  private:
   struct Acc {
@@ -49,6 +53,11 @@ class SweepStatsObserver : public runtime::SimulationObserver {
   std::vector<double> kept_values_;
   std::vector<int> columns_;
   std::vector<Acc> acc_;
+  // The samples of the entries taken as `mbfe stats` takes them (empty for
+  // the others): times, and per entry its column's values.
+  std::vector<double> times_;
+  std::vector<std::vector<double>> samples_;
+  bool any_samples_ = false;
 };
 
 }  // namespace mbfe::tool
