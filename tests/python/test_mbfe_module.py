@@ -230,6 +230,18 @@ class SameAsTheCommandLine(unittest.TestCase):
         self.assertIn("never touched the beam during the run", run.warnings[1])
         self.assertFalse(run.springs[0]["touched"])
 
+    def test_a_zero_mass_wheel_is_refused_as_the_command_line_refuses_it(self):
+        # Started as written, the first step would divide by the zero mass.
+        r = cli("simulate", model("bridge_moving_mass.yaml"), "--set", "bodies.wheel.mass=0", "--start", "given",
+                "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        m = mbfe.load(model("bridge_moving_mass.yaml"), set={"bodies.wheel.mass": 0})
+        with self.assertRaises(mbfe.ModelError) as caught:
+            m.simulate(static_start=False)
+        # The command line's last line (a warning about the joint comes first).
+        self.assertEqual(str(caught.exception), r.stderr.strip().splitlines()[-1])
+        self.assertIn("'wheel' moves no mass", str(caught.exception))
+
     def test_request_the_model_cannot_run(self):
         with self.assertRaises(ValueError):
             mbfe.load(model("double_pendulum.yaml")).simulate(probes=["deck@1"])
