@@ -210,6 +210,7 @@ runtime::SimulationRequest Model::request() const {
 runtime::SimulationReport Model::simulate(const runtime::SimulationRequest& request,
                                           runtime::SimulationObserver& observer,
                                           const runtime::StepMonitor& keep_going) const {
+  runtime::check_request_early(ir(), request);  // before seconds of assembly
   return runtime::simulate(assembled_for(request.adjust), request, observer, keep_going);
 }
 

@@ -1,11 +1,23 @@
 #include "api/simulator.h"
 
+#include "runtime/simulation/simulate.h"
 #include "runtime/simulation/simulator.h"
 
 namespace mbfe {
 
+namespace {
+
+/// The request checked against the model file before the model is assembled.
+const Model& checked(const Model& model, const runtime::SimulationRequest& request) {
+  runtime::check_request_early(model.ir(), request);
+  return model;
+}
+
+}  // namespace
+
 Simulator::Simulator(const Model& model, const runtime::SimulationRequest& request)
-    : model_(model), sim_(std::make_unique<runtime::Simulator>(model_.assembled_for(request.adjust), request)) {}
+    : model_(checked(model, request)),
+      sim_(std::make_unique<runtime::Simulator>(model_.assembled_for(request.adjust), request)) {}
 Simulator::~Simulator() = default;
 Simulator::Simulator(Simulator&&) noexcept = default;
 Simulator& Simulator::operator=(Simulator&&) noexcept = default;

@@ -258,7 +258,12 @@ class Expander {
           contact["body"] = wheel;
           contact["point"] = "contact";
           contact["beam"] = beam.name;
-          contact["stiffness"] = number_text(s.contact_stiffness);
+          if (s.contact_hertz) {
+            contact["law"] = "hertz";
+            contact["coefficient"] = number_text(s.contact_stiffness);
+          } else {
+            contact["stiffness"] = number_text(s.contact_stiffness);
+          }
           contact["damping"] = number_text(s.contact_damping);
           contact["unilateral"] = "true";
           contacts.push_back(contact);

@@ -55,8 +55,8 @@ std::string yaml_message(const YAML::Exception& error) {
 
 }  // namespace
 
-Model parse_model_text(const std::string& text, const std::string& display_path,
-                       const ParseLimits& limits, const ir::ModelOverrides& overrides) {
+Model parse_model_text(const std::string& text, const std::string& display_path, const ParseLimits& limits,
+                       const ir::ModelOverrides& overrides, std::string* expanded) {
   if (text.size() > limits.max_file_bytes) {
     throw ModelError(display_path, {1, 1},
                      "the file is " + std::to_string(text.size()) +
@@ -88,6 +88,11 @@ Model parse_model_text(const std::string& text, const std::string& display_path,
     } catch (const ModelError& error) {
       throw blame_override(error, applied);
     }
+    if (expanded) {
+      YAML::Emitter out;
+      out << root;
+      *expanded = std::string(out.c_str()) + "\n";
+    }
     return model;
   } catch (const ModelError&) {
     throw;
@@ -101,13 +106,17 @@ Model parse_model_text(const std::string& text, const std::string& display_path,
 }
 
 Model load_model_file(const std::string& path, const ParseLimits& limits, const ir::ModelOverrides& overrides) {
+  return parse_model_text(read_model_file(path, limits), path, limits, overrides);
+}
+
+std::string read_model_file(const std::string& path, const ParseLimits& limits) {
   // Refused before reading: a huge file must not be loaded into memory. A
   // pipe or special file (/dev/zero) is read to one byte past the limit.
   const CappedRead read = read_capped_file(path, limits.max_file_bytes, FileKinds::kAlsoStreams);
   if (read.fault == ReadFault::kTooLarge)
     throw ModelError(path, {1, 1}, read.why + " (ParseLimits::max_file_bytes)");
   if (!read) throw ModelError(path, {}, read.why);
-  return parse_model_text(read.text, path, limits, overrides);
+  return read.text;
 }
 
 }  // namespace mbfe::frontend

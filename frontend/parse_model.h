@@ -55,7 +55,15 @@ ir::Model load_model_file(const std::string& path, const ParseLimits& limits = {
                           const ir::ModelOverrides& overrides = {});
 
 /// Same, from text already in memory; `display_path` is used in messages.
-ir::Model parse_model_text(const std::string& text, const std::string& display_path,
-                           const ParseLimits& limits = {}, const ir::ModelOverrides& overrides = {});
+/// `expanded`, when given, gets the model as the solver is made from it, as
+/// YAML: the overrides written in and a `train:` expanded into its bodies,
+/// loads and contacts (`mbfe generate --expanded`); comments are not kept.
+ir::Model parse_model_text(const std::string& text, const std::string& display_path, const ParseLimits& limits = {},
+                           const ir::ModelOverrides& overrides = {}, std::string* expanded = nullptr);
+
+/// The text of the file `path` (as load_model_file reads it: at most
+/// limits.max_file_bytes, a directory or a device refused).
+/// @throws ir::ModelError naming the file and why.
+std::string read_model_file(const std::string& path, const ParseLimits& limits = {});
 
 }  // namespace mbfe::frontend

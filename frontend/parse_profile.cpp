@@ -5,7 +5,9 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
+#include <utility>
 
 #include "frontend/capped_file.h"
 #include "frontend/model_parser.h"
@@ -117,6 +119,88 @@ void read_profile_table(const std::string& text, const std::string& shown_path, 
   if (s.size() < 2) fail(1, "expected at least 2 rows of (s, offset), got " + std::to_string(s.size()));
 }
 
+/// A pole of a profile expression on [0, length]: a division by a part, a
+/// negative power of a part, or a tan of a part, where that part (its cosine
+/// for tan) changes sign between two of the sample points and vanishes there
+/// (bisected to adjacent doubles, its value below 1e-9 of its largest at the
+/// samples: a jump such as step(s - 5) - 0.5 changes sign without vanishing).
+/// Sampling alone misses a zero between its points (1/(s - 10) sampled where
+/// s = 10 is not a sample). Returns the operator's node and the s, m.
+std::optional<std::pair<int, double>> find_pole(const ir::Expression& e, double length, int samples) {
+  using Kind = ir::ExpressionNode::Kind;
+  const std::vector<ir::ExpressionNode>& nodes = e.nodes();
+  // Postfix: the subtree rooted at node j is the range [j - size[j] + 1, j].
+  std::vector<int> size(nodes.size(), 1);
+  std::vector<int> stack;
+  for (std::size_t j = 0; j < nodes.size(); ++j) {
+    for (int a = 0; a < nodes[j].arity(); ++a) {
+      size[j] += size[static_cast<std::size_t>(stack.back())];
+      stack.pop_back();
+    }
+    stack.push_back(static_cast<int>(j));
+  }
+  const auto subtree = [&](int root) {
+    return std::vector<ir::ExpressionNode>(nodes.begin() + (root - size[static_cast<std::size_t>(root)] + 1),
+                                           nodes.begin() + root + 1);
+  };
+  for (std::size_t j = 0; j < nodes.size(); ++j) {
+    const ir::ExpressionNode& node = nodes[j];
+    const int last_arg = static_cast<int>(j) - 1;  // the root of the last (or only) argument
+    std::vector<ir::ExpressionNode> part;          // the part whose zero is a pole
+    std::optional<ir::Expression> exponent;
+    if (node.kind == Kind::kDivide) {
+      part = subtree(last_arg);
+    } else if (node.kind == Kind::kPower) {
+      const int base = last_arg - size[static_cast<std::size_t>(last_arg)];
+      part = subtree(base);
+      exponent = ir::Expression(subtree(last_arg));
+    } else if (node.kind == Kind::kCall && node.function == ir::Function::kTan) {
+      part = subtree(last_arg);
+      ir::ExpressionNode cosine;
+      cosine.kind = Kind::kCall;
+      cosine.function = ir::Function::kCos;
+      part.push_back(cosine);
+    } else {
+      continue;
+    }
+    const ir::Expression g(std::move(part));
+    if (g.is_constant()) continue;
+    std::vector<double> values(static_cast<std::size_t>(samples) + 1);
+    double largest = 0.0;
+    for (int i = 0; i <= samples; ++i) {
+      values[static_cast<std::size_t>(i)] = g.evaluate(length * i / samples);
+      if (std::isfinite(values[static_cast<std::size_t>(i)]))
+        largest = std::max(largest, std::abs(values[static_cast<std::size_t>(i)]));
+    }
+    for (int i = 0; i < samples; ++i) {
+      double a = length * i / samples, b = length * (i + 1) / samples;
+      double ga = values[static_cast<std::size_t>(i)], gb = values[static_cast<std::size_t>(i) + 1];
+      if (!(ga * gb < 0.0)) continue;  // no sign change (a zero at a sample is the sampling's to find)
+      for (int k = 0; k < 200 && b - a > 0.0; ++k) {
+        const double m = 0.5 * (a + b);
+        if (m <= a || m >= b) break;  // adjacent doubles
+        const double gm = g.evaluate(m);
+        if (gm == 0.0 || !std::isfinite(gm)) {
+          a = b = m;
+          ga = gb = gm;
+          break;
+        }
+        if ((gm < 0.0) == (ga < 0.0)) {
+          a = m;
+          ga = gm;
+        } else {
+          b = m;
+          gb = gm;
+        }
+      }
+      const bool vanishes = !(std::min(std::abs(ga), std::abs(gb)) > 1e-9 * largest);
+      const double at = std::abs(ga) <= std::abs(gb) ? a : b;
+      if (vanishes && (!exponent || exponent->evaluate(at) < 0.0)) return std::make_pair(static_cast<int>(j), at);
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 void ModelParser::parse_profile(const MapView& beam_view, Beam& beam) const {
@@ -150,6 +234,16 @@ void ModelParser::parse_profile(const MapView& beam_view, Beam& beam) const {
         view.fail(where, ir::describe_fault(profile.expression, *fault, s) + "; expected a finite offset on the beam's [0, " +
                              format_number(beam.length) + "] m");
       }
+    }
+    if (const auto pole = find_pole(profile.expression, beam.length, kProfileChecks)) {
+      const ir::ExpressionNode& node = profile.expression.nodes()[static_cast<std::size_t>(pole->first)];
+      const std::string what = node.kind == ir::ExpressionNode::Kind::kDivide  ? "a division by a part that is 0"
+                               : node.kind == ir::ExpressionNode::Kind::kPower ? "a negative power of a part that is 0"
+                                                                               : "a tan whose cosine is 0";
+      view.fail(node.loc, view.prefixed(view.what(*expression) + " \"" + shown(profile.expression.source().text) +
+                                        "\" has a pole at s = " + format_number(pole->second) + " m: " + what +
+                                        " there; expected a finite offset on the beam's [0, " +
+                                        format_number(beam.length) + "] m"));
     }
     return;
   }

@@ -42,6 +42,18 @@ std::vector<std::string> split_path(const std::string& path) {
   return keys;
 }
 
+/// A value of `values:` or `set:` as the text a --set VALUE would be: a
+/// scalar as written, a list or map in YAML's flow form ("[0, 300]"), which
+/// the point's model reads back as YAML (frontend/model_overrides.h).
+std::string value_text(const YAML::Node& item) {
+  if (item.IsScalar()) return item.Scalar();
+  YAML::Emitter out;
+  out.SetSeqFormat(YAML::Flow);
+  out.SetMapFormat(YAML::Flow);
+  out << item;
+  return out.c_str();
+}
+
 /// `template: "{}*t"`: each value put in place of {} (a speed into a motion).
 void apply_template(const MapView& view, ir::SweepVariable& v) {
   const Field* t = view.find("template");
@@ -68,9 +80,10 @@ ir::SweepVariable parse_variable(const MapView& view) {
     view.fail(view.loc(), view.prefixed("give either 'values: [...]' or 'range: {from, to, count}'"));
   if (values) {
     for (const YAML::Node& item : view.list(*values)) {
-      if (!item.IsScalar())
-        view.fail(location_of(item), view.prefixed("values: expected numbers or strings, got " + describe(item)));
-      v.values.push_back(item.Scalar());
+      if (!item.IsScalar() && !item.IsSequence() && !item.IsMap())
+        view.fail(location_of(item),
+                  view.prefixed("values: expected numbers, strings, lists or maps, got " + describe(item)));
+      v.values.push_back(value_text(item));
     }
     if (v.values.empty()) view.fail(values->value_loc, view.prefixed("values: the list is empty"));
     apply_template(view, v);
@@ -93,15 +106,40 @@ ir::SweepVariable parse_variable(const MapView& view) {
 }
 
 ir::SweepCollect parse_collect(const MapView& view) {
-  view.allow({"name", "column", "stat"});
+  view.allow({"name", "column", "stat", "lowpass", "order", "from", "to"});
   ir::SweepCollect c;
   c.loc = view.loc();
   c.name = view.identifier(view.require("name"), kMaxNameLength);
   c.column = view.text(view.require("column"));
-  constexpr ir::SweepStat kStats[] = {ir::SweepStat::kMax,  ir::SweepStat::kMin,     ir::SweepStat::kAbsMax,
-                                      ir::SweepStat::kMean, ir::SweepStat::kRms,     ir::SweepStat::kInitial,
-                                      ir::SweepStat::kFinal};
-  c.stat = kStats[view.choice(view.require("stat"), {"max", "min", "absmax", "mean", "rms", "initial", "final"})];
+  constexpr ir::SweepStat kStats[] = {ir::SweepStat::kMax,
+                                      ir::SweepStat::kMin,
+                                      ir::SweepStat::kAbsMax,
+                                      ir::SweepStat::kMean,
+                                      ir::SweepStat::kRms,
+                                      ir::SweepStat::kInitial,
+                                      ir::SweepStat::kFinal,
+                                      ir::SweepStat::kStd,
+                                      ir::SweepStat::kStatisticalMax,
+                                      ir::SweepStat::kStatisticalMin,
+                                      ir::SweepStat::kLossPercent};
+  const Field& stat = view.require("stat");
+  c.stat = kStats[view.choice(stat, {"max", "min", "absmax", "mean", "rms", "initial", "final", "std",
+                                     "statistical_max", "statistical_min", "loss_percent"})];
+  if (const Field* f = view.find("lowpass")) c.lowpass_hz = view.positive(*f);
+  if (const Field* f = view.find("order")) {
+    const long long order = view.whole_number(*f);
+    if (order < 1 || order > 8)
+      view.fail(f->value_loc, view.prefixed("order must be a whole number 1..8 (got " + std::to_string(order) + ")"));
+    if (c.lowpass_hz == 0.0)
+      view.fail(f->value_loc, view.prefixed("order is the low-pass filter's: give lowpass (Hz) too"));
+    c.order = static_cast<int>(order);
+  }
+  if (const Field* f = view.find("from")) c.from = view.number(*f);
+  if (const Field* f = view.find("to")) c.to = view.number(*f);
+  if (c.from && c.to && *c.from > *c.to)
+    view.fail(view.find("from")->value_loc, view.prefixed("from must not be after to"));
+  if (c.as_stats() && (c.stat == ir::SweepStat::kInitial || c.stat == ir::SweepStat::kFinal))
+    view.fail(stat.value_loc, view.prefixed("stat initial and final take the rows as written: no lowpass, from or to"));
   return c;
 }
 
@@ -125,44 +163,52 @@ void parse_simulation(const MapView& view, ir::SweepSimulation& sim) {
   if (const Field* f = view.find("full_state")) sim.full_state = view.boolean(*f);
 }
 
-/// The node the keys lead to in `root`, or an error naming the first key that does not.
-// yaml-cpp's Node::operator= copies into the node it refers to; reset() is
-// what moves a Node to refer to another one.
-YAML::Node walk(const ir::Sweep& sweep, const ir::SweepVariable& v, YAML::Node root, const std::string& model_path) {
+/// The node the keys lead to in `root`, or an error naming the first key that
+/// does not; a list or map there takes only values that are lists or maps.
+YAML::Node walk(const ir::Sweep& sweep, const ir::SweepVariable& v, const YAML::Node& root,
+                const std::string& model_path) {
   YAML::Node node;
   node.reset(root);
   std::string where = "the model";
   for (const std::string& key : v.keys) {
-    if (node.IsSequence()) {
-      YAML::Node found;
-      bool any = false;
-      for (YAML::Node item : node) {
-        if (item.IsMap() && item["name"] && item["name"].IsScalar() && item["name"].Scalar() == key) {
-          found.reset(item);
-          any = true;
-          break;
-        }
-      }
-      if (!any)
-        throw ModelError(sweep.source_path, v.loc,
-                         "path '" + shown(v.path) + "': " + where + " has no item named '" + shown(key) + "' (in " +
-                             model_path + ")");
-      node.reset(found);
-      where = "'" + key + "'";
-      continue;
-    }
-    if (!node.IsMap() || !node[key])
-      throw ModelError(sweep.source_path, v.loc,
-                       "path '" + shown(v.path) + "': " + where + " has no key '" + shown(key) + "' (in " +
-                           model_path + ")");
-    const YAML::Node child = node[key];
+    std::string why;
+    const YAML::Node child = path_child(node, key, where, why);
+    if (!child.IsDefined())
+      throw ModelError(sweep.source_path, v.loc, "path '" + shown(v.path) + "': " + why + " (in " + model_path + ")");
     node.reset(child);
     where = "'" + key + "'";
   }
-  if (!node.IsScalar())
-    throw ModelError(sweep.source_path, v.loc,
-                     "path '" + shown(v.path) + "' leads to " + describe(node) + ", not to a single value");
+  if (!node.IsScalar() && !node.IsNull()) {
+    for (const std::string& value : v.values)
+      if (!is_flow_collection(value))
+        throw ModelError(sweep.source_path, v.loc,
+                         "path '" + shown(v.path) + "' leads to " + describe(node) +
+                             ", not to a single value: give lists or maps as its values ([a, b]) or go on to one "
+                             "of its items (" +
+                             shown(v.path) + ".0)");
+  }
   return node;
+}
+
+/// The model's file paths (a beam's `profile: {file: ...}`) made absolute,
+/// resolved against the folder of the model file `model_path` as the model
+/// resolves them: a point's model.yaml lives in another folder.
+void absolute_file_paths(YAML::Node root, const std::string& model_path) {
+  // Looked up through const nodes, which never add a key; the nodes found
+  // still refer to the tree's own.
+  const YAML::Node& model = root;
+  const YAML::Node beams = model["beams"];
+  if (!beams || !beams.IsSequence()) return;
+  const std::filesystem::path parent = std::filesystem::path(model_path).parent_path();
+  const std::filesystem::path folder =
+      parent.empty() ? std::filesystem::current_path() : std::filesystem::absolute(parent);
+  for (const YAML::Node& beam : beams) {
+    if (!beam.IsMap() || !beam["profile"] || !beam["profile"].IsMap()) continue;
+    YAML::Node file = beam["profile"]["file"];
+    if (!file || !file.IsScalar() || file.Scalar().empty()) continue;
+    const std::filesystem::path path(file.Scalar());
+    if (path.is_relative()) file = (folder / path).lexically_normal().string();
+  }
 }
 
 YAML::Node load_model_yaml(const ir::Sweep& sweep, const std::string& model_text) {
@@ -210,9 +256,10 @@ ir::Sweep parse_sweep_text(const std::string& text, const std::string& display_p
       v.keys = split_path(v.path);
       for (const std::string& k : v.keys)
         if (k.empty()) view.fail(f.key_loc, "set: path '" + shown(v.path) + "' has an empty key");
-      if (!f.value.IsScalar())
-        view.fail(f.value_loc, "set: " + shown(v.path) + ": expected a number or a string, got " + describe(f.value));
-      v.values.push_back(f.value.Scalar());
+      if (!f.value.IsScalar() && !f.value.IsSequence() && !f.value.IsMap())
+        view.fail(f.value_loc,
+                  "set: " + shown(v.path) + ": expected a number, a string, a list or a map, got " + describe(f.value));
+      v.values.push_back(value_text(f.value));
       for (const ir::SweepVariable& varied : sweep.vary)
         if (varied.path == v.path)
           view.fail(f.key_loc, "set: path '" + shown(v.path) + "' is also varied (vary at line " +
@@ -287,15 +334,20 @@ void check_sweep_paths(const ir::Sweep& sweep, const std::string& model_text) {
 
 std::string point_model_text(const ir::Sweep& sweep, const std::string& model_text, long i) {
   YAML::Node root = YAML::Clone(load_model_yaml(sweep, model_text));
-  for (const ir::SweepVariable& v : sweep.set) {
-    YAML::Node node = walk(sweep, v, root, sweep_model_path(sweep));
-    node = v.values.front();
-  }
+  const std::string model_path = sweep_model_path(sweep);
+  const auto put = [&](const ir::SweepVariable& v, const std::string& value) {
+    YAML::Node node = walk(sweep, v, root, model_path);
+    try {
+      put_value(node, value, location_of(node), model_path, "path '" + shown(v.path) + "'");
+    } catch (const ModelError& e) {  // a flow value that is not YAML: at the path in the sweep file
+      throw ModelError(sweep.source_path, v.loc, e.message());
+    }
+  };
+  for (const ir::SweepVariable& v : sweep.set) put(v, v.values.front());
   const std::vector<int> idx = sweep.indices(i);
-  for (std::size_t k = 0; k < sweep.vary.size(); ++k) {
-    YAML::Node node = walk(sweep, sweep.vary[k], root, sweep_model_path(sweep));
-    node = sweep.vary[k].values[static_cast<std::size_t>(idx[k])];
-  }
+  for (std::size_t k = 0; k < sweep.vary.size(); ++k)
+    put(sweep.vary[k], sweep.vary[k].values[static_cast<std::size_t>(idx[k])]);
+  absolute_file_paths(root, model_path);
   YAML::Emitter out;
   out << root;
   return std::string(out.c_str()) + "\n";

@@ -22,9 +22,19 @@ Suspension read_suspension(const MapView& view) {
   s.stiffness = view.positive(view.require("stiffness"));
   if (const Field* f = view.find("damping")) s.damping = view.number_at_least(*f, 0.0);
   if (const Field* f = view.find("height")) s.height = view.positive(*f);
+  // The wheel's contact, as a slider_spring takes it: linear (stiffness) or
+  // Hertz's law (coefficient, N/m^1.5), each refusing the other's constant.
   const MapView contact = view.sub(view.require("contact"));
-  contact.allow({"stiffness", "damping"});
-  s.contact_stiffness = contact.positive(contact.require("stiffness"));
+  contact.allow({"law", "stiffness", "coefficient", "damping"});
+  if (const Field* f = contact.find("law")) s.contact_hertz = contact.choice(*f, {"linear", "hertz"}) == 1;
+  const char* constant = s.contact_hertz ? "coefficient" : "stiffness";
+  const char* other = s.contact_hertz ? "stiffness" : "coefficient";
+  if (const Field* f = contact.find(other))
+    contact.fail(f->key_loc,
+                 contact.prefixed(std::string(other) + " belongs to law " + (s.contact_hertz ? "linear" : "hertz") +
+                                  "; law " + (s.contact_hertz ? "hertz" : "linear") + " takes " + constant +
+                                  (s.contact_hertz ? " (C_H, N/m^1.5)" : " (N/m)")));
+  s.contact_stiffness = contact.positive(contact.require(constant));
   if (const Field* f = contact.find("damping")) s.contact_damping = contact.number_at_least(*f, 0.0);
   return s;
 }

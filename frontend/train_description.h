@@ -16,7 +16,9 @@ namespace mbfe::frontend {
 struct Suspension {
   bool present = false;
   double wheel_mass = 0.0, inertia = 0.0, stiffness = 0.0, damping = 0.0, height = 1.0;
+  /// Each wheel's contact: stiffness (N/m), or C_H (N/m^1.5) with Hertz's law.
   double contact_stiffness = 0.0, contact_damping = 0.0;
+  bool contact_hertz = false;
 };
 
 struct Vehicle {

@@ -3,6 +3,7 @@
 // fills it from a sweep file (frontend/parse_sweep.h); `mbfe sweep` runs it.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,14 +20,42 @@ struct SweepVariable {
   SourceLoc loc;                    // of the path
 };
 
-enum class SweepStat { kMax, kMin, kAbsMax, kMean, kRms, kInitial, kFinal };
+/// kStd .. kLossPercent are the contact-force statistics of EN 50318 as
+/// `mbfe stats` gives them (runtime/signal/force_statistics.h).
+enum class SweepStat {
+  kMax,
+  kMin,
+  kAbsMax,
+  kMean,
+  kRms,
+  kInitial,
+  kFinal,
+  kStd,
+  kStatisticalMax,
+  kStatisticalMin,
+  kLossPercent
+};
 
 /// One statistic of one output column over a run: a column of the summary.
 struct SweepCollect {
   std::string name;    // summary column, an identifier
   std::string column;  // CSV column of the run, e.g. "deck@10.0"
   SweepStat stat = SweepStat::kMax;
+  /// As `mbfe stats --lowpass --order --from --to`: the column low-pass
+  /// filtered (Butterworth, zero phase; Hz, 0: none) over the whole run, then
+  /// the window [from, to] (s) cut. Absent (0, and both unset): the stat over
+  /// every row as written.
+  double lowpass_hz = 0.0;
+  int order = 4;
+  std::optional<double> from, to;
   SourceLoc loc;
+
+  /// Whether the stat is taken as `mbfe stats` takes it: filtered or
+  /// windowed, or one of the EN 50318 statistics.
+  bool as_stats() const {
+    return lowpass_hz > 0.0 || from || to || stat == SweepStat::kStd || stat == SweepStat::kStatisticalMax ||
+           stat == SweepStat::kStatisticalMin || stat == SweepStat::kLossPercent;
+  }
 };
 
 /// The `simulate:` block: what `mbfe simulate` would take as flags.

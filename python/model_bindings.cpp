@@ -31,9 +31,35 @@ void refuse_nul(const std::string& text, const char* what) {
                           "), which no file name can hold");
 }
 
-/// `set={"loads.front_susp.stiffness": 2e6, ...}` as the command line's
-/// --set PATH=VALUE flags: a number as its shortest round-trip text (Python's
-/// repr), a bool as true/false, a string as written.
+/// One value of `set=` as YAML text: a number as its shortest round-trip text
+/// (Python's repr of the float or int), a bool as true/false; a string as
+/// written at the top (the command line's VALUE) and double-quoted inside a
+/// list; a list, tuple or numpy array in YAML's flow form, "[0, 300]".
+std::string yaml_text(const py::handle& value, const std::string& path, bool top) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::int_>(value))
+    return py::repr(py::int_(py::reinterpret_borrow<py::object>(value))).cast<std::string>();
+  if (py::isinstance<py::float_>(value))
+    return py::repr(py::float_(py::reinterpret_borrow<py::object>(value))).cast<std::string>();
+  if (py::isinstance<py::str>(value)) {
+    const std::string text = value.cast<std::string>();
+    if (top) return text;
+    std::string quoted = "\"";
+    for (const char c : text) quoted += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
+    return quoted + "\"";
+  }
+  if (py::isinstance<py::array>(value)) return yaml_text(value.attr("tolist")(), path, top);  // numpy: as its list
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    std::string text = "[";
+    for (const py::handle item : value) text += (text.size() > 1 ? ", " : "") + yaml_text(item, path, false);
+    return text + "]";
+  }
+  throw py::type_error("set['" + path + "']: expected a number, a bool, a string or a list of them, got " +
+                       py::repr(py::type::of(value)).cast<std::string>());
+}
+
+/// `set={"loads.front_susp.stiffness": 2e6, "beams.deck.origin": [0, 1]}` as
+/// the command line's --set PATH=VALUE flags (yaml_text).
 mbfe::ir::ModelOverrides model_overrides(const py::object& set) {
   mbfe::ir::ModelOverrides overrides;
   if (set.is_none()) return overrides;
@@ -42,11 +68,7 @@ mbfe::ir::ModelOverrides model_overrides(const py::object& set) {
     if (!py::isinstance<py::str>(key)) throw py::type_error("set: each PATH is a string, such as 'beams.deck.section.inertia'");
     const std::string path = key.cast<std::string>();
     refuse_nul(path, "a PATH of set");
-    std::string text;
-    if (py::isinstance<py::bool_>(value)) text = value.cast<bool>() ? "true" : "false";
-    else if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)) text = py::repr(value).cast<std::string>();
-    else if (py::isinstance<py::str>(value)) text = value.cast<std::string>();
-    else throw py::type_error("set['" + path + "']: expected a number, a bool or a string");
+    const std::string text = yaml_text(value, path, true);
     refuse_nul(text, "a value of set");
     if (path.empty()) throw py::value_error("set: a PATH is empty");
     overrides.push_back({path, text});

@@ -27,7 +27,7 @@ set title "20 m simply supported deck (f1 = 4.02 Hz, 15 t/m, 1 % damping) under 
 set grid
 set key top left maxrows 5
 set xlabel "speed (km/h)"
-set ylabel "peak midspan deck acceleration (m/s^2)"
+set ylabel "peak midspan deck acceleration, low-pass 36.2 Hz (m/s^2)"
 set xrange [180:432]
 set yrange [0:*]
 set arrow from 180,3.5 to 432,3.5 nohead lw 2 dt 2 lc rgb "black"

@@ -105,18 +105,21 @@ def pantograph_text(pan, start_text, v, suffix, static_force, speed_text):
     w("    mass: %s" % number(pan["m1"]))
     w("    inertia: 0")
     w("    points: {strip: [0, 0]}")
+    tag = "_" + suffix if suffix else ""
     loads = []
     w = loads.append
+    # Named, so that --set and a sweep reach them: loads.k1.stiffness,
+    # loads.uplift.value (k1_2, uplift_2 ... on a second pantograph).
     if three:
-        w("  - {type: spring_damper, joint: %s, stiffness: %s, damping: %s, rest: 0.0}   # k3, c3" % (lower, number(pan["k3"]), number(pan["c3"])))
-    w("  - {type: spring_damper, joint: %s, stiffness: %s, damping: %s, rest: 0.0}   # k2, c2" % (f, number(pan["k2"]), number(pan["c2"])))
-    w("  - {type: spring_damper, joint: %s, stiffness: %s, damping: %s, rest: 0.0}    # k1, c1" % (h, number(pan["k1"]), number(pan["c1"])))
+        w("  - {name: %s, type: spring_damper, joint: %s, stiffness: %s, damping: %s, rest: 0.0}   # k3, c3" % ("k3" + tag, lower, number(pan["k3"]), number(pan["c3"])))
+    w("  - {name: %s, type: spring_damper, joint: %s, stiffness: %s, damping: %s, rest: 0.0}   # k2, c2" % ("k2" + tag, f, number(pan["k2"]), number(pan["c2"])))
+    w("  - {name: %s, type: spring_damper, joint: %s, stiffness: %s, damping: %s, rest: 0.0}    # k1, c1" % ("k1" + tag, h, number(pan["k1"]), number(pan["c1"])))
     if three:
-        w("  - {type: force, body: %s, value: [0, %s]}   # static force %g N + the lower frame's weight cancelled" % (lower, number(static_force + pan["m3"] * g), static_force))
-        w("  - {type: force, body: %s, value: [0, %s]}   # the upper frame's weight cancelled" % (f, number(pan["m2"] * g)))
+        w("  - {name: %s, type: force, body: %s, value: [0, %s]}   # static force %g N + the lower frame's weight cancelled" % ("uplift" + tag, lower, number(static_force + pan["m3"] * g), static_force))
+        w("  - {name: %s, type: force, body: %s, value: [0, %s]}   # the upper frame's weight cancelled" % ("frame_weight" + tag, f, number(pan["m2"] * g)))
     else:
-        w("  - {type: force, body: %s, value: [0, %s]}   # static force %g N + the frame's weight cancelled" % (f, number(static_force + pan["m2"] * g), static_force))
-    w("  - {type: force, body: %s, value: [0, %s]}    # the head's weight cancelled" % (h, number(pan["m1"] * g)))
+        w("  - {name: %s, type: force, body: %s, value: [0, %s]}   # static force %g N + the frame's weight cancelled" % ("uplift" + tag, f, number(static_force + pan["m2"] * g), static_force))
+    w("  - {name: %s, type: force, body: %s, value: [0, %s]}    # the head's weight cancelled" % ("head_weight" + tag, h, number(pan["m1"] * g)))
     return b, loads
 
 

@@ -19,7 +19,8 @@ std::string request_flag(const std::string& field) {
 }
 
 ParsedArgs::ParsedArgs(const std::vector<std::string>& args, const std::set<std::string>& value_flags,
-                       const std::set<std::string>& bool_flags) {
+                       const std::set<std::string>& bool_flags,
+                       const std::map<std::string, std::set<std::string>>& optional_value_flags) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     // "--name" or a one-letter "-o"; anything else (including "-0.5") is positional.
@@ -35,7 +36,15 @@ ParsedArgs::ParsedArgs(const std::vector<std::string>& args, const std::set<std:
       inline_value = name.substr(eq + 1);
       name = name.substr(0, eq);
     }
-    if (bool_flags.count(name)) {
+    if (const auto optional = optional_value_flags.find(name); optional != optional_value_flags.end()) {
+      if (inline_value)
+        values_[name] = *inline_value;
+      else if (i + 1 < args.size() && optional->second.count(args[i + 1]))
+        values_[name] = args[++i];
+      else
+        values_[name] = "";
+      every_value_[name].push_back(values_[name]);
+    } else if (bool_flags.count(name)) {
       if (inline_value) throw UsageError("flag --" + name + " takes no value");
       bools_.insert(name);
     } else if (value_flags.count(name)) {

@@ -30,9 +30,15 @@ class ParsedArgs {
  public:
   /// @param value_flags flags that take a value (without the leading "--").
   /// @param bool_flags flags that take none.
+  /// @param optional_value_flags flags whose value may be left out: each
+  ///        takes the next argument only when it is one of its choices
+  ///        (`--en1990 direct`; `--en1990 --lowpass 30` and `--en1990 acc.csv`
+  ///        leave it bare), or a value written `--flag=value`; bare, its
+  ///        value() is the empty string.
   /// @throws UsageError on an unknown flag or a missing value.
   ParsedArgs(const std::vector<std::string>& args, const std::set<std::string>& value_flags,
-             const std::set<std::string>& bool_flags);
+             const std::set<std::string>& bool_flags,
+             const std::map<std::string, std::set<std::string>>& optional_value_flags = {});
 
   bool has(const std::string& flag) const;
   /// The last value given for `flag`.

@@ -28,7 +28,8 @@ namespace mbfe::tool {
 
 namespace {
 
-constexpr const char* kHelp = R"(Usage: mbfe modal MODEL.yaml [--json] [--all] [--beam NAME] [--modes K]
+constexpr const char* kHelp =
+    R"(Usage: mbfe modal MODEL.yaml [--json] [--all] [--beam NAME] [--modes K] [--set PATH=VALUE ...]
 
 Modal analysis of every beam of the model (K Phi = M Phi Omega^2, mass-normalised)
 and the eigenvalues of its state matrix B = [[0, I], [-M^-1 K, -M^-1 C]] (eq (28)),
@@ -52,6 +53,8 @@ Options:
   --all         print every row (default: the first and last five, "..." between)
   --beam NAME   only this beam
   --modes K     modes found by the sparse path for beams above 2000 DOF (default 20)
+  --set PATH=VALUE  replace a value of the file first (repeatable; as for
+                mbfe simulate: --set beams.deck.section.inertia=0.3)
   --plot FILE.png  draw the original and adjusted eigenvalues in the complex
                 plane (-Re on a log axis) with forward Euler's stability
                 region for the step --step (needs gnuplot); a coupled model
@@ -81,7 +84,7 @@ Example:
 }  // namespace
 
 int cmd_modal(const Args& args) {
-  const ParsedArgs parsed(args, {"beam", "modes", "plot", "step"}, {"json", "all", "help"});
+  const ParsedArgs parsed(args, {"beam", "modes", "plot", "step", "set"}, {"json", "all", "help"});
   if (parsed.has("help")) {
     std::cout << kHelp;
     return 0;
@@ -103,7 +106,8 @@ int cmd_modal(const Args& args) {
   // write over it).
   const auto plot_file = parsed.value("plot");
   if (plot_file && !plot_file->empty()) check_output_file(*plot_file, "--plot", {path});
-  const ir::Model m = frontend::load_model_file(path);
+  const ir::ModelOverrides overrides = model_overrides(parsed);
+  const ir::Model m = frontend::load_model_file(path, {}, overrides);
   if (plot_file && !plot_file->empty()) check_output_file(*plot_file, "--plot", model_inputs(path, m));
   const std::vector<std::string> warnings = announce_model_warnings(m);
   if (m.beams.empty()) {
@@ -141,7 +145,9 @@ int cmd_modal(const Args& args) {
   std::string coupled_skipped;  // why the coupled spectrum is not shown (a model too large for it)
   if (coupled) {
     for (const ir::Beam& b : m.beams) coupled_any_adjustment = coupled_any_adjustment || b.adjustment.active();
-    const Model model = Model::load(path);
+    LoadOptions load;
+    load.overrides = overrides;
+    const Model model = Model::load(path, load);
     const int coordinates = static_cast<int>(m.bodies.size()) + model.assembled().beams().dof;
     if (coordinates <= runtime::kMaxLinearizedCoordinates && coordinates > kLinearizationNoticeCoordinates &&
         !runtime::linearized_from_tangents(model.assembled()))

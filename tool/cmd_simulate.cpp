@@ -2,23 +2,23 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
 #include "api/mbfe.h"
+#include "api/model_warnings.h"
+#include "api/results_output.h"
+#include "api/run_record.h"
+#include "api/vtk_animation.h"
+#include "runtime/simulation/simulate.h"
 #include "tool/adjustment_check.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "tool/file_checks.h"
 #include "tool/interrupt_guard.h"
 #include "tool/progress_line.h"
-#include "api/model_warnings.h"
-#include "api/results_output.h"
-#include "api/run_record.h"
-#include "api/vtk_animation.h"
 
 namespace mbfe::tool {
 
@@ -276,7 +276,9 @@ int cmd_simulate(const Args& args) {
   if (parsed.has("formulation") && model.kind() != runtime::ModelKind::kCoupled && model.ir().constraints.empty())
     throw UsageError("--formulation applies to coupled models (bodies, beams and contacts) and models with closed "
                      "loops (constraints:) only");
-  // A beam the analysis refuses is bad input before the output file is opened.
+  // What the model file alone rules out, before seconds of assembly; then a
+  // beam the analysis refuses is bad input before the output file is opened.
+  runtime::check_request_early(model.ir(), request);
   model.assembled_for(request.adjust);
   std::optional<double> check_until;
   if (parsed.has("check-adjustment")) {
@@ -333,6 +335,7 @@ int cmd_simulate(const Args& args) {
                 << model.ir().name << ".pvd\n";
   }
   nlohmann::json record = run_record(model, request, report, results.layout(), csv.rows());
+  record["set"] = parsed.values("set");  // the --set values the run's model has, "PATH=VALUE" each, in order
   for (const std::string& w : run_warnings(model.ir(), report)) std::cerr << "mbfe: warning: " << w << "\n";
   if (check_until && report.message.empty()) {
     const AdjustmentCheck check = check_adjustment(model, request, report, kept, *check_until);

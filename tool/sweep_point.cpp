@@ -19,6 +19,7 @@
 #include "frontend/sha256.h"
 #include "api/json_text.h"
 #include "api/results_output.h"
+#include "tool/sweep_stats.h"
 
 namespace mbfe::tool {
 
@@ -58,111 +59,6 @@ void write_atomically(const fs::path& p, const std::string& text) {
   fs::rename(tmp, p);
 }
 
-/// Whether `column` is a beam's coordinate or its rate ("deck_w3",
-/// "deck_dw3_dot"): what a sweep's run.csv leaves out unless full_state.
-bool is_beam_coordinate(const ir::Model& model, const std::string& column) {
-  for (const ir::Beam& b : model.beams) {
-    for (const char* kind : {"_w", "_dw"}) {
-      const std::string head = b.name + kind;
-      if (column.size() <= head.size() || column.compare(0, head.size(), head) != 0) continue;
-      std::size_t k = head.size();
-      while (k < column.size() && std::isdigit(static_cast<unsigned char>(column[k]))) ++k;
-      if (k > head.size() && (k == column.size() || column.compare(k, std::string::npos, "_dot") == 0)) return true;
-    }
-  }
-  return false;
-}
-
-/// The run's rows into run.csv (without the beams' coordinates unless the
-/// sweep asks for full_state), and the statistics of the collected columns
-/// (over every column).
-class StatsObserver : public runtime::SimulationObserver {
- public:
-  StatsObserver(const ir::Sweep& sweep, const ir::Model& model, ResultsOutput& csv)
-      : sweep_(sweep), model_(model), csv_(csv) {}
-
-  void begin(const runtime::OutputLayout& layout) override {
-    std::vector<std::string> kept_names;
-    for (std::size_t k = 0; k < layout.columns.size(); ++k)
-      if (sweep_.simulation.full_state || !is_beam_coordinate(model_, layout.columns[k])) {
-        kept_.push_back(k);
-        kept_names.push_back(layout.columns[k]);
-      }
-    csv_.header(kept_names);
-    kept_values_.resize(kept_.size());
-    for (const ir::SweepCollect& c : sweep_.collect) {
-      int index = -1;
-      for (std::size_t k = 0; k < layout.columns.size(); ++k)
-        if (layout.columns[k] == c.column) index = static_cast<int>(k);
-      if (index < 0) {
-        std::string names;
-        for (const std::string& n : layout.columns) names += (names.empty() ? "" : ", ") + n;
-        throw runtime::InvalidInput("collect '" + c.name + "': the run has no column '" + c.column +
-                                    "' (its columns: " + names + ")");
-      }
-      columns_.push_back(index);
-    }
-    acc_.assign(columns_.size(), Acc{});
-  }
-
-  void row(const runtime::OutputRow& row) override {
-    if (kept_.size() == row.values.size()) {
-      csv_.row(row.values.data(), row.values.size());
-    } else {
-      for (std::size_t k = 0; k < kept_.size(); ++k) kept_values_[k] = row.values[kept_[k]];
-      csv_.row(kept_values_.data(), kept_values_.size());
-    }
-    for (std::size_t k = 0; k < columns_.size(); ++k) {
-      const double v = row.values[static_cast<std::size_t>(columns_[k])];
-      Acc& a = acc_[k];
-      a.max = std::max(a.max, v);
-      a.min = std::min(a.min, v);
-      a.absmax = std::max(a.absmax, std::abs(v));
-      a.sum += v;
-      a.sum2 += v * v;
-      if (a.n == 0) a.first = v;
-      a.last = v;
-      ++a.n;
-    }
-  }
-
-  std::vector<double> stats() const {
-    std::vector<double> out;
-    for (std::size_t k = 0; k < sweep_.collect.size(); ++k) {
-      if (k >= acc_.size() || acc_[k].n == 0) {
-        out.push_back(kNan);
-        continue;
-      }
-      const Acc& a = acc_[k];
-      switch (sweep_.collect[k].stat) {
-        case ir::SweepStat::kMax: out.push_back(a.max); break;
-        case ir::SweepStat::kMin: out.push_back(a.min); break;
-        case ir::SweepStat::kAbsMax: out.push_back(a.absmax); break;
-        case ir::SweepStat::kMean: out.push_back(a.sum / a.n); break;
-        case ir::SweepStat::kRms: out.push_back(std::sqrt(a.sum2 / a.n)); break;
-        case ir::SweepStat::kInitial: out.push_back(a.first); break;
-        case ir::SweepStat::kFinal: out.push_back(a.last); break;
-      }
-    }
-    return out;
-  }
-
- private:
-  struct Acc {
-    double max = -std::numeric_limits<double>::infinity();
-    double min = std::numeric_limits<double>::infinity();
-    double absmax = 0.0, sum = 0.0, sum2 = 0.0, first = kNan, last = kNan;
-    long n = 0;
-  };
-  const ir::Sweep& sweep_;
-  const ir::Model& model_;
-  ResultsOutput& csv_;
-  std::vector<std::size_t> kept_;     // the columns of run.csv, indices into a row
-  std::vector<double> kept_values_;
-  std::vector<int> columns_;
-  std::vector<Acc> acc_;
-};
-
 /// The point model's request (its `simulation:` block), the sweep's
 /// `simulate:` block overriding it.
 runtime::SimulationRequest request_of(const ir::Sweep& sweep, const Model& model) {
@@ -190,8 +86,14 @@ std::string request_sha256(const ir::Sweep& sweep, const std::string& point_text
   // Only when set, so that the requests of sweeps written before it keep their hash.
   if (s.full_state) j["simulate"]["full_state"] = true;
   nlohmann::json collect = nlohmann::json::array();
-  for (const ir::SweepCollect& c : sweep.collect)
-    collect.push_back({{"name", c.name}, {"column", c.column}, {"stat", static_cast<int>(c.stat)}});
+  for (const ir::SweepCollect& c : sweep.collect) {
+    nlohmann::json entry = {{"name", c.name}, {"column", c.column}, {"stat", static_cast<int>(c.stat)}};
+    // Only when given, so that the requests of sweeps written before them keep their hash.
+    if (c.lowpass_hz > 0.0) entry["lowpass"] = {c.lowpass_hz, c.order};
+    if (c.from) entry["from"] = *c.from;
+    if (c.to) entry["to"] = *c.to;
+    collect.push_back(entry);
+  }
   j["collect"] = collect;
   return frontend::sha256_hex(json_text(j));
 }
@@ -249,13 +151,19 @@ PointResult run_sweep_point(const ir::Sweep& sweep, const std::string& model_tex
     options.cache_by_sources = true;
     const Model model = Model::parse(text, model_file.string(), options);
     ResultsOutput csv((dir / "run.csv").string());
-    StatsObserver observer(sweep, model.ir(), csv);
+    SweepStatsObserver observer(sweep, model.ir(), csv);
     const runtime::SimulationReport report = model.simulate(request_of(sweep, model), observer);
     csv.flush();
-    r.stats = observer.stats();
+    std::vector<std::string> refused;
+    r.stats = observer.stats(&refused);
     r.done = report.message.empty();
     r.exit_status = r.done ? 0 : 3;
     r.message = report.message;
+    if (r.done && !refused.empty()) {  // a statistic `mbfe stats` refuses: the request cannot be met
+      r.done = false;
+      r.exit_status = 2;
+      for (const std::string& why : refused) r.message += (r.message.empty() ? "" : "; ") + why;
+    }
   } catch (const ir::ModelError& e) {
     r.exit_status = 2;
     r.message = e.what();

@@ -2,9 +2,10 @@
 
 #include <string>
 
-#include "runtime/structure/adjusted_structures.h"
 #include "runtime/errors/invalid_input.h"
 #include "runtime/simulation/adjustment_estimate.h"
+#include "runtime/simulation/static_start_hints.h"
+#include "runtime/structure/adjusted_structures.h"
 
 namespace mbfe::runtime {
 
@@ -98,6 +99,24 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
                                 " DOFs, beyond the dense modal analysis (" + std::to_string(options.dense_limit) +
                                 "), and " + why + "; run the original model (--adjust off), e.g. with generalized_alpha";
     }
+  }
+  // Policy mass in a coupled model is built on the beam's stiffness
+  // (M_adj = K / k* + ..., structure/adjusted_parts.cpp): a beam its own
+  // supports do not hold against rigid motion has a singular K, and its
+  // rigid mode would get no mass at all.
+  for (const ir::Beam& b : model_.beams) {
+    if (!adjustment_unavailable_.empty() || kind_ != ModelKind::kCoupled || !b.adjustment.active() ||
+        b.adjustment.policy != ir::AdjustmentPolicy::kMass || b.adjustment.scope == ir::AdjustmentScope::kJoined ||
+        held_against_rigid_motion(b))
+      continue;
+    adjustment_unavailable_at_ = b.adjustment.loc;
+    adjustment_unavailable_ = "beam '" + b.name +
+                              "': policy mass keeps every mode's stiffness and builds the adjusted "
+                              "mass from the beam's stiffness K, which its supports leave singular (" +
+                              supports_in_words(b) +
+                              ": it can move as a rigid body), so it cannot keep its static "
+                              "compliance; give it supports that hold it (two pinned, or one clamped), or use "
+                              "policy: cap";
   }
   if (!model_.links.empty()) {
     if (kind_ != ModelKind::kCoupled)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "runtime/errors/invalid_input.h"
 #include "runtime/simulation/simulator.h"
 
 namespace mbfe::runtime {
@@ -43,6 +44,51 @@ SimulationReport simulate(const AssembledModel& model, const SimulationRequest& 
   SimulationReport report = sim.report();
   report.run.rows = emitted;
   return report;
+}
+
+void check_request_early(const ir::Model& model, const SimulationRequest& request) {
+  if (model.bodies.empty() || model.beams.empty()) return;  // truncation runs in coupled models only
+  const bool any_adjustment =
+      std::any_of(model.beams.begin(), model.beams.end(), [](const ir::Beam& b) { return b.adjustment.active(); });
+  // As CoupledRun decides (coupled_run.cpp): the implicit integrators run the
+  // original model unless asked otherwise (and then refuse).
+  const IntegratorKind kind = request.integrator.kind;
+  const bool implicit = kind == IntegratorKind::kBackwardEuler || kind == IntegratorKind::kTrapezoid ||
+                        kind == IntegratorKind::kGeneralizedAlpha ||
+                        (kind == IntegratorKind::kLinearMultistep && request.integrator.name == "bdf2");
+  const bool adjusted = implicit ? request.adjust.value_or(false) : request.adjust.value_or(any_adjustment);
+  if (!adjusted) return;
+  const auto truncated = [](const ir::Beam& b) {
+    return b.adjustment.active() && b.adjustment.policy == ir::AdjustmentPolicy::kTruncate;
+  };
+  for (const ProbeSpec& probe : request.probes) {
+    if (!probe.acceleration || probe.body) continue;
+    // The probe's own beam when it is truncated, else the first that is: a
+    // beam acceleration keeps every beam in nodal coordinates (coupled_run.cpp).
+    const ir::Beam* refused = nullptr;
+    for (const ir::Beam& b : model.beams)
+      if (truncated(b) && (!refused || b.name == probe.beam)) refused = &b;
+    if (!refused) return;
+    const ir::SourceLoc at = refused->adjustment.loc;
+    const std::string place = probe.label.substr(0, probe.label.size() - 4);  // BEAM@S without ":acc"
+    const std::string where =
+        model.source_path + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": ";
+    const std::string fixes = "probe the displacement ('" + place +
+                              "') or a body's acceleration (BODY:acc), or run "
+                              "the original model (--adjust off)";
+    if (refused->name == probe.beam)
+      throw InvalidInput(where + "probe '" + probe.label + "': beam '" + probe.beam +
+                         "' has policy truncate: it moves in its kept modes alone, in split coordinates, which hold "
+                         "no nodal acceleration; " +
+                         fixes);
+    throw InvalidInput(where + "probe '" + probe.label +
+                       "': a beam's acceleration needs every beam in nodal "
+                       "coordinates, and beam '" +
+                       refused->name +
+                       "' has policy truncate, which steps in split "
+                       "coordinates only; " +
+                       fixes);
+  }
 }
 
 }  // namespace mbfe::runtime

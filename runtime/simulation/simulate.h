@@ -43,4 +43,13 @@ namespace mbfe::runtime {
 SimulationReport simulate(const AssembledModel& model, const SimulationRequest& request,
                           SimulationObserver& observer, const StepMonitor& keep_going = {});
 
+/// What a run of `request` on `model` cannot do, found from the model file
+/// alone, before the model is assembled (the modal analysis of a large beam
+/// takes seconds): an acceleration probe on a beam of policy truncate in an
+/// adjusted coupled run (the truncated beam steps in its kept modes, which hold
+/// no nodal acceleration). Runs the checks simulate() makes again later.
+/// @throws InvalidInput at the beam's adjustment block, naming the probe and
+///         the beam it is on.
+void check_request_early(const ir::Model& model, const SimulationRequest& request);
+
 }  // namespace mbfe::runtime

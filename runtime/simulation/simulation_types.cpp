@@ -31,8 +31,15 @@ ProbeSpec parse_probe(const std::string& text) {
   char* end = nullptr;
   errno = 0;
   spec.s = std::strtod(number.c_str(), &end);
-  if (number.empty() || end != number.c_str() + number.size() || errno == ERANGE || !std::isfinite(spec.s))
+  if (number.empty() || end != number.c_str() + number.size() || errno == ERANGE || !std::isfinite(spec.s)) {
+    const auto colon = number.find(':');
+    if (colon != std::string::npos)
+      throw InvalidRequest("probes", "'" + text + "': unknown suffix '" + number.substr(colon) +
+                                         "'; the only one is :acc (the acceleration, m/s^2): BEAM@S is the "
+                                         "displacement (m), BEAM@S:acc its acceleration, e.g. " +
+                                         spec.beam + "@" + number.substr(0, colon) + ":acc");
     throw InvalidRequest("probes", "'" + text + "': expected a number after '@', got '" + number + "'");
+  }
   return spec;
 }
 

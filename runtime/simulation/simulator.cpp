@@ -4,6 +4,7 @@
 
 #include "runtime/errors/invalid_input.h"
 #include "runtime/simulation/adjustment_estimate.h"
+#include "runtime/simulation/massless_joints.h"
 #include "runtime/simulation/model_run.h"
 #include "runtime/simulation/run_diagnosis.h"
 #include "runtime/simulation/time_expressions.h"
@@ -24,6 +25,9 @@ Simulator::Simulator(const AssembledModel& model, const SimulationRequest& reque
   check_request(request);
   // Runs start at t = 0 (the options' t0 is left alone).
   check_time_expressions(model.ir(), model.kernels(), 0.0, request.t_end);
+  // The static start names a joint that moves no mass itself; from the given
+  // state the first step would divide by its zero mass.
+  if (!request.static_start.value_or(model.ir().initial.static_start)) refuse_massless_joints(model.ir());
   run_ = detail::make_model_run(model, request);
   SimulationOptions options = run_->options();
   options.step = request.step;

@@ -19,7 +19,9 @@
 #include "ir/model_error.h"
 #include "runtime/coupled/coupled_implicit_system.h"
 #include "runtime/errors/multibody_errors.h"
+#include "runtime/simulation/massless_joints.h"
 #include "runtime/simulation/running_surface_seat.h"
+#include "runtime/simulation/static_start_hints.h"
 
 namespace mbfe::runtime {
 
@@ -187,16 +189,6 @@ std::vector<int> free_indices(int n, const std::vector<int>& driven) {
   return out;
 }
 
-/// Whether `body` and every body it carries have no mass and no inertia.
-bool carries_no_mass(const ir::Model& model, std::size_t body) {
-  const ir::Body& b = model.bodies[body];
-  const bool zero3 = std::all_of(b.inertia3.begin(), b.inertia3.end(), [](double v) { return v == 0.0; });
-  if (b.mass != 0.0 || b.inertia != 0.0 || !zero3) return false;
-  for (std::size_t k = 0; k < model.bodies.size(); ++k)
-    if (model.bodies[k].parent == static_cast<int>(body) && !carries_no_mass(model, k)) return false;
-  return true;
-}
-
 /// The body whose joint owns the coordinate `name` ("wheel", or "body_x" of a
 /// joint of several coordinates), -1 when none.
 int body_of_coordinate(const ir::Model& model, const std::string& name) {
@@ -237,22 +229,31 @@ std::string contact_hint(const ir::Model& model, const CoupledDynamics& dyn, con
   return hint.empty() ? "" : hint + " (check the beam's origin and angle, in rad, and the body's position)";
 }
 
+/// `hints`: what holds nothing at the start (static_start_hints.h), found
+/// before Newton. A mechanism at the start keeps its message and adds them; a
+/// Newton that lost hold or did not converge is explained by them instead of
+/// by its own words (which can only guess at units).
 [[noreturn]] void static_start_failed(const ir::Model& model, const std::exception& e,
-                                      const std::vector<std::string>& names, const std::string& hint = "") {
+                                      const std::vector<std::string>& names, const std::string& hint = "",
+                                      const std::vector<std::string>& hints = {}) {
   std::string what = e.what();
   if (!hint.empty()) {
     const auto cut = what.find(" in place (");
     if (cut != std::string::npos) what.insert(cut + std::string(" in place").size(), hint);
   }
+  std::string causes;
+  for (const std::string& h : hints) causes += (causes.empty() ? "" : "; ") + h;
+  const auto* mechanism = dynamic_cast<const MechanismError*>(&e);
+  if (!causes.empty())
+    what =
+        mechanism ? what + "; " + causes : "no equilibrium holds: " + causes + "; or start from `initial:` as written";
   // A coordinate without stiffness whose body carries no mass: its
   // acceleration, the residual, is not defined, which is not a mechanism.
-  if (const auto* mechanism = dynamic_cast<const MechanismError*>(&e)) {
+  if (mechanism) {
     const std::string& name = names[mechanism->coordinate()];
     const int body = body_of_coordinate(model, name);
     if (body >= 0 && carries_no_mass(model, static_cast<std::size_t>(body)))
-      what = "'" + name + "' moves no mass: body '" + model.bodies[static_cast<std::size_t>(body)].name +
-             "' and every body it carries have mass 0 and inertia 0, so its acceleration is not defined; give it a "
-             "mass or inertia, or drive its joint";
+      what = moves_no_mass(model, name, static_cast<std::size_t>(body));
   }
   throw ir::ModelError(model.source_path, model.initial.loc, "static start of model '" + model.name + "': " + what);
 }
@@ -338,6 +339,7 @@ void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::V
   qd = Eigen::VectorXd::Zero(n);
   dyn.impose_motion(0.0, q, qd);
   seat_on_running_surfaces(model, dyn, free_indices(dyn.n(), dyn.driven()), kRelativeStep, q, qd);
+  const std::vector<std::string> hints = static_start_hints(model, dyn, q, qd);
   const std::vector<std::string> all_names = dyn.model().coordinate_names();
   const std::vector<int> unknown = free_indices(n, dyn.driven());
   std::vector<std::string> names;
@@ -362,7 +364,7 @@ void coupled_static_state(const ir::Model& model, CoupledDynamics& dyn, Eigen::V
       residual(x0, r0);  // the contacts' states at the start
       hint = contact_hint(model, dyn, names[mechanism->coordinate()]);
     }
-    static_start_failed(model, e, names, hint);
+    static_start_failed(model, e, names, hint, hints);
   }
 }
 
@@ -440,6 +442,7 @@ bool coupled_static_state_sparse(const ir::Model& model, const std::shared_ptr<C
   qd = Eigen::VectorXd::Zero(n);
   dyn->impose_motion(0.0, q, qd);
   seat_on_running_surfaces(model, *dyn, free_indices(dyn->n(), dyn->driven()), kRelativeStep, q, qd);
+  const std::vector<std::string> hints = static_start_hints(model, *dyn, q, qd);
   const Eigen::VectorXd a = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m), r, c, da, dl;
   double last_step = std::numeric_limits<double>::infinity(), first_residual = -1.0;
@@ -463,9 +466,12 @@ bool coupled_static_state_sparse(const ir::Model& model, const std::shared_ptr<C
       return true;
     last_step = step;
   }
+  std::string causes;
+  for (const std::string& h : hints) causes += "; " + h;
   throw ir::ModelError(model.source_path, model.initial.loc,
                        "static start of model '" + model.name + "': Newton on the sparse tangent did not converge in " +
-                           std::to_string(kMaxIterations) + " iterations; start from `initial:` as written");
+                           std::to_string(kMaxIterations) + " iterations" + causes +
+                           "; start from `initial:` as written");
 }
 
 void coupled_static_start(const ir::Model& model, const std::shared_ptr<CoupledDynamics>& dyn, Eigen::VectorXd& q,

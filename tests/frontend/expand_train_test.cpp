@@ -65,10 +65,16 @@ void expect_hslm(const char* name, int n, double coach, double d, double load) {
   }
 }
 
-// The rows of EN 1991-2:2003 Table 6.3, typed here again.
+// The rows of EN 1991-2:2003 Table 6.3 (N, D m, d m, P kN), typed here again.
 TEST(HslmTrains, A1AxlesMatchTheStandardsGeometry) { expect_hslm("A1", 18, 18.0, 2.0, 170e3); }
 TEST(HslmTrains, A2AxlesMatchTheStandardsGeometry) { expect_hslm("A2", 17, 19.0, 3.5, 200e3); }
+TEST(HslmTrains, A3AxlesMatchTheStandardsGeometry) { expect_hslm("A3", 16, 20.0, 2.0, 180e3); }
+TEST(HslmTrains, A4AxlesMatchTheStandardsGeometry) { expect_hslm("A4", 15, 21.0, 3.0, 190e3); }
+TEST(HslmTrains, A5AxlesMatchTheStandardsGeometry) { expect_hslm("A5", 14, 22.0, 2.0, 170e3); }
+TEST(HslmTrains, A6AxlesMatchTheStandardsGeometry) { expect_hslm("A6", 13, 23.0, 2.0, 180e3); }
+TEST(HslmTrains, A7AxlesMatchTheStandardsGeometry) { expect_hslm("A7", 13, 24.0, 2.0, 190e3); }
 TEST(HslmTrains, A8AxlesMatchTheStandardsGeometry) { expect_hslm("A8", 12, 25.0, 2.5, 190e3); }
+TEST(HslmTrains, A9AxlesMatchTheStandardsGeometry) { expect_hslm("A9", 11, 26.0, 2.0, 210e3); }
 TEST(HslmTrains, A10AxlesMatchTheStandardsGeometry) { expect_hslm("A10", 11, 27.0, 2.0, 210e3); }
 
 TEST(HslmTrains, TenTrainsAndNoOther) {
@@ -232,6 +238,36 @@ TEST(ExpandTrain, VehicleBodyBalancesUnequalAxleLoads) {
   EXPECT_NEAR(rest_position(model, body)[1], 1.5, kPositionTol);
   EXPECT_NEAR(rest_position(model, body_named(model, "train_v1_w2"))[0], 12.0 - a, kPositionTol);
   EXPECT_NEAR(rest_position(model, body_named(model, "train_v1_w2"))[1], 0.0, kPositionTol);
+}
+
+TEST(ExpandTrain, VehiclesTakeHertzianWheelContacts) {
+  const std::string train =
+      std::string(kBridge) +
+      "gravity: [0, -9.81]\n"
+      "train:\n  speed: 10\n  front: 12.0\n  as: vehicles\n"
+      "  vehicles: [{axles: [2.0, 12.0], load: 1.0e5}]\n"
+      "  suspension: {wheel_mass: 800, inertia: 2.0e5, stiffness: 1.0e6, contact: {law: hertz, coefficient: 1.0e10, "
+      "damping: 500}}\n";
+  const Model model = parse_model_text(train, "x.yaml");
+  ASSERT_EQ(model.contacts.size(), 2u);  // two wheels, one beam
+  for (const Contact& c : model.contacts) {
+    EXPECT_EQ(c.law, ContactLaw::kHertz) << c.name;
+    EXPECT_EQ(c.coefficient, 1.0e10) << c.name;
+    EXPECT_EQ(c.stiffness, 0.0) << c.name;
+    EXPECT_EQ(c.damping, 500.0) << c.name;
+    EXPECT_TRUE(c.unilateral) << c.name;
+  }
+  // Each law's constant, and not the other's.
+  const auto with_contact = [&](const std::string& contact) {
+    std::string text = train;
+    const std::string old_contact = "contact: {law: hertz, coefficient: 1.0e10, damping: 500}";
+    return error_of(text.replace(text.find(old_contact), old_contact.size(), contact));
+  };
+  EXPECT_NE(with_contact("contact: {law: hertz, stiffness: 1.0e9}").find("stiffness belongs to law linear"),
+            std::string::npos);
+  EXPECT_NE(with_contact("contact: {coefficient: 1.0e10}").find("coefficient belongs to law hertz"), std::string::npos);
+  EXPECT_NE(with_contact("contact: {law: hertz}").find("coefficient"), std::string::npos);
+  EXPECT_NE(with_contact("contact: {law: rigid, stiffness: 1.0e9}").find("law"), std::string::npos);
 }
 
 TEST(ExpandTrain, ErrorsPointIntoTheFile) {

@@ -90,7 +90,8 @@ TEST(ModelOverrides, ABadPathIsAnErrorInTheFileNamingTheSet) {
   EXPECT_EQ(error_of(model_text(), {{"beams.bridge.sektion.inertia", "1"}}),
             "bridge.yaml:14:5: --set beams.bridge.sektion.inertia=1: 'bridge' has no key 'sektion'");
   EXPECT_EQ(error_of(model_text(), {{"beams.bridge.section", "1"}}),
-            "bridge.yaml:18:14: --set beams.bridge.section=1: PATH leads to a map, not to a single value");
+            "bridge.yaml:18:14: --set beams.bridge.section=1: PATH leads to a map, not to a single value: give the "
+            "whole of it as VALUE in YAML's flow form ({key: value, ...}) or go on to one of its keys (PATH.key)");
   EXPECT_EQ(error_of(model_text(), {{"beams..inertia", "1"}}),
             "bridge.yaml:1:1: --set beams..inertia=1: PATH 'beams..inertia' has an empty key");
   // A misspelt last key is added, and the schema refuses it at its map.

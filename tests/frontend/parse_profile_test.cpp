@@ -71,6 +71,26 @@ TEST_F(ParseProfile, ExpressionErrorsPointIntoTheText) {
   EXPECT_NE(log_error.find("at s = 0 m"), std::string::npos) << log_error;
 }
 
+TEST_F(ParseProfile, APoleBetweenTheSamplesIsRefusedAtItsOperator) {
+  // The 4001 samples of [0, 30] are 7.5 mm apart; s = 10.0003 is none of them,
+  // and 1/(s - 10.0003) is finite (if large) at every one.
+  const std::string division = error_of("profile: {expression: \"0.001/(s - 10.0003)\"}");
+  EXPECT_EQ(division.rfind(model_path() + ":8:33: beam 'rail': profile.expression \"0.001/(s - 10.0003)\" has a "
+                                          "pole at s = 10.0003 m: a division by a part that is 0 there",
+                           0),
+            0u)
+      << division;
+  const std::string power = error_of("profile: {expression: \"0.001*(s - 10.0003)^(-1)\"}");
+  EXPECT_NE(power.find(":8:47: "), std::string::npos) << power;  // the ^
+  EXPECT_NE(power.find("a negative power of a part that is 0"), std::string::npos) << power;
+  const std::string tangent = error_of("profile: {expression: \"0.001*tan(s/10)\"}");  // pole at 5 pi = 15.708 m
+  EXPECT_NE(tangent.find("has a pole at s = 15.70796"), std::string::npos) << tangent;
+  // No pole: a sign change by a jump, a part that keeps its sign, a positive power.
+  EXPECT_EQ(error_of("profile: {expression: \"0.001/(step(s - 5) - 0.5)\"}"), "(accepted)");
+  EXPECT_EQ(error_of("profile: {expression: \"0.001/(s + 1)\"}"), "(accepted)");
+  EXPECT_EQ(error_of("profile: {expression: \"0.001*(s - 10.0003)^3\"}"), "(accepted)");
+}
+
 TEST_F(ParseProfile, TableRelativeToTheModelFile) {
   write("rail.csv", "# measured\ns, offset\n0, 0\n10, 0.001\n30.5, -0.002\n");
   const Model m = parse("profile: {file: rail.csv}");

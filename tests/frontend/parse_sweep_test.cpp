@@ -120,8 +120,9 @@ TEST(ParseSweep, BadFilesAreRefusedWhereTheyAreWrong) {
                "path 'bodies.arm.mas': 'arm' has no key 'mas'", true);
   expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "set: {bodies.arm.mass: 3}\n"), "5:7",
                "set: path 'bodies.arm.mass' is also varied");
-  expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "set: {bodies.arm.inertia: [1, 2]}\n"), "5:27",
-               "set: bodies.arm.inertia: expected a number or a string");
+  // A list or map is a value (it replaces what the path leads to whole); nothing is not.
+  expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "set: {bodies.arm.inertia: ~}\n"), "5:7",
+               "set: bodies.arm.inertia: expected a number, a string, a list or a map, got");
   // Two probes of one label would be two columns of one name.
   expect_error(sweep_text("  - {path: bodies.arm.mass, values: [1]}\n", "simulate: {probes: [deck@5, deck@2, deck@5]}\n"),
                "5:37", "probes: 'deck@5' is given twice");

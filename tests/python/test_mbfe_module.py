@@ -170,7 +170,48 @@ class SameAsTheCommandLine(unittest.TestCase):
         self.assertEqual(str(caught.exception), r.stderr.strip())
         self.assertIn("--set bodies.link2.mass=-1", str(caught.exception))
         with self.assertRaises(TypeError):
+            mbfe.load(model("double_pendulum.yaml"), set={"bodies.link2.mass": object()})
+        # A list is a YAML list: where the file wants a number, the model refuses it, as --set does.
+        r = cli("eval", model("double_pendulum.yaml"), "--set", "bodies.link2.mass=[1, 2]", "--json")
+        self.assertEqual(r.returncode, 2)
+        with self.assertRaises(mbfe.ModelError) as caught:
             mbfe.load(model("double_pendulum.yaml"), set={"bodies.link2.mass": [1, 2]})
+        self.assertEqual(str(caught.exception), r.stderr.strip())
+
+    def test_set_lists_as_the_command_line(self):
+        # A list replaces a list whole; an item of a list of numbers is reached by its index.
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "l.csv")
+            r = cli("simulate", model("double_pendulum.yaml"), "--set", "bodies.link2.joint.at=[1.25, 0]",
+                    "--t-end", "0.3", "--quiet", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            header, rows = read_csv(out)
+        plain = mbfe.load(model("double_pendulum.yaml")).simulate(t_end=0.3)
+        self.assertFalse(np.array_equal(plain["link1"], rows[:, header.index("link1")]))
+        for given in ({"bodies.link2.joint.at": [1.25, 0]}, {"bodies.link2.joint.at": (1.25, 0.0)},
+                      {"bodies.link2.joint.at": np.array([1.25, 0.0])}, {"bodies.link2.joint.at.0": 1.25}):
+            with self.subTest(set=given):
+                run = mbfe.load(model("double_pendulum.yaml"), set=given).simulate(t_end=0.3)
+                for k, name in enumerate(header):
+                    np.testing.assert_array_equal(run[name], rows[:, k], err_msg=name)
+
+    def test_status_names_as_the_sidecar(self):
+        # A step far beyond forward Euler's stable limit: 'diverged', as the
+        # sidecar of the command line says; a run that ends well: 'completed'.
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "d.csv")
+            r = cli("simulate", model("double_pendulum.yaml"), "--integrator", "forward_euler", "--step", "0.2",
+                    "--t-end", "1000", "--quiet", "--out", out)
+            self.assertEqual(r.returncode, 3, r.stderr)
+            with open(out + ".json") as f:
+                sidecar = json.load(f)
+        pendulum = mbfe.load(model("double_pendulum.yaml"))
+        run = pendulum.simulate(integrator="forward_euler", step=0.2, t_end=1000)
+        self.assertEqual(sidecar["status"], "diverged")
+        self.assertEqual(run.status, "diverged")
+        self.assertEqual(run.message, sidecar["message"])
+        self.assertTrue(run.message.startswith("diverged"), run.message)
+        self.assertEqual(pendulum.simulate(t_end=0.1).status, "completed")
 
     def test_warnings_as_in_the_sidecar(self):
         # `angle: 180` meant as degrees, started as written: the wheel falls
@@ -188,6 +229,18 @@ class SameAsTheCommandLine(unittest.TestCase):
         self.assertEqual(len(run.warnings), 2)
         self.assertIn("never touched the beam during the run", run.warnings[1])
         self.assertFalse(run.springs[0]["touched"])
+
+    def test_a_zero_mass_wheel_is_refused_as_the_command_line_refuses_it(self):
+        # Started as written, the first step would divide by the zero mass.
+        r = cli("simulate", model("bridge_moving_mass.yaml"), "--set", "bodies.wheel.mass=0", "--start", "given",
+                "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        m = mbfe.load(model("bridge_moving_mass.yaml"), set={"bodies.wheel.mass": 0})
+        with self.assertRaises(mbfe.ModelError) as caught:
+            m.simulate(static_start=False)
+        # The command line's last line (a warning about the joint comes first).
+        self.assertEqual(str(caught.exception), r.stderr.strip().splitlines()[-1])
+        self.assertIn("'wheel' moves no mass", str(caught.exception))
 
     def test_request_the_model_cannot_run(self):
         with self.assertRaises(ValueError):

@@ -65,5 +65,67 @@ TEST(CmdSimulateSet, ABadPathOrValueIsAnErrorInTheFileNamingTheSet) {
   EXPECT_NE(bare.err.find("--set: expected PATH=VALUE"), std::string::npos) << bare.err;
 }
 
+TEST(CmdSimulateSet, TheSidecarListsTheOverrides) {
+  test::TempDir dir;
+  const std::string csv = (dir / "s.csv").string();
+  const CliRun r = run_cli("simulate " + kModel +
+                           " --set bodies.link2.mass=2.5 --set 'bodies.link2.com=[0.4, 0]' "
+                           "--t-end 0.05 --quiet --out " +
+                           shell_quote(csv));
+  ASSERT_EQ(r.status, 0) << r.all();
+  const std::string sidecar = test::read_text(csv + ".json");
+  EXPECT_NE(sidecar.find("\"set\": [\n    \"bodies.link2.mass=2.5\",\n    \"bodies.link2.com=[0.4, 0]\"\n  ]"),
+            std::string::npos)
+      << sidecar;
+  const CliRun plain = run_cli("simulate " + kModel + " --t-end 0.05 --quiet --out " + shell_quote(csv));
+  ASSERT_EQ(plain.status, 0) << plain.all();
+  EXPECT_NE(test::read_text(csv + ".json").find("\"set\": []"), std::string::npos);
+}
+
+TEST(CmdSimulateSet, ModalAndGenerateTakeSetToo) {
+  // modal: the beam's frequencies scale with sqrt(I): I x 4 doubles them.
+  const CliRun plain = run_cli("modal models/paper_beam.yaml --json");
+  ASSERT_EQ(plain.status, 0) << plain.all();
+  const CliRun quoted = run_cli(
+      "modal models/paper_beam.yaml --json --set 'beams.beam1.section={area: 2.5e-5, "
+      "inertia: 2.0833333333333333e-10}'");
+  ASSERT_EQ(quoted.status, 0) << quoted.all();
+  const auto first = [](const std::string& json) {
+    const auto at = json.find("\"natural_frequencies_rad_s\"");
+    return std::stod(json.substr(json.find('[', at) + 1));
+  };
+  // The square of side 0.005 has A = 2.5e-5 and I = 5.2083e-11: four times I.
+  constexpr double kFrequencyRoundOff = 1e-9;  // relative: the same eigenproblem, K scaled
+  EXPECT_NEAR(first(quoted.out) / first(plain.out), 2.0, kFrequencyRoundOff);
+  // generate: the banner's SHA-256 covers the overrides.
+  test::TempDir dir;
+  const CliRun a = run_cli("generate " + kModel + " -o " + shell_quote((dir / "a").string()) + " --quiet");
+  const CliRun b = run_cli("generate " + kModel + " -o " + shell_quote((dir / "b").string()) +
+                           " --quiet --set bodies.link2.mass=2.5");
+  ASSERT_EQ(a.status, 0) << a.all();
+  ASSERT_EQ(b.status, 0) << b.all();
+  const std::string ha = test::read_text((dir / "a" / "double_pendulum.cpp").string());
+  const std::string hb = test::read_text((dir / "b" / "double_pendulum.cpp").string());
+  EXPECT_NE(ha, hb);
+}
+
+TEST(CmdGenerateExpanded, PrintsTheModelAsTheSolverIsMadeFromIt) {
+  test::TempDir dir;
+  const CliRun r = run_cli("generate models/bridge_hslm_20m.yaml --expanded --set train.hslm=A3");
+  ASSERT_EQ(r.status, 0) << r.all();
+  EXPECT_EQ(r.out.find("train:"), std::string::npos) << r.out;  // expanded: the key is gone
+  EXPECT_NE(r.out.find("train_a46"), std::string::npos);        // HSLM-A3: 2 x 16 + 14 axles
+  EXPECT_EQ(r.out.find("train_a47"), std::string::npos);
+  // The printed model is a model: the same one.
+  const std::string path = (dir / "expanded.yaml").string();
+  std::ofstream(path) << r.out;
+  const CliRun a = run_cli("modal " + shell_quote(path) + " --json");
+  const CliRun b = run_cli("modal models/bridge_hslm_20m.yaml --json --set train.hslm=A3");
+  ASSERT_EQ(a.status, 0) << a.all();
+  EXPECT_EQ(a.out, b.out);
+  const CliRun both = run_cli("generate models/bridge_hslm_20m.yaml --expanded -o " + shell_quote(path));
+  EXPECT_EQ(both.status, 2) << both.all();
+}
+
 }  // namespace
 }  // namespace mbfe

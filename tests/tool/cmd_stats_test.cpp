@@ -270,6 +270,34 @@ TEST(CmdStatsDeckAcceleration, PeakOfEveryAccelerationColumnAndTheEn1990Check) {
   EXPECT_EQ(nlohmann::json::parse(one.out)["en1990"]["ok"], true);
 }
 
+TEST(CmdStatsDeckAcceleration, En1990AloneChecksBallastedAndReportsDirectFastened) {
+  const std::string csv = acceleration_csv("deck_acc_bare.csv", 4.2);  // between 3.5 and 5 m/s^2
+  const CliRun r = run_cli("stats " + test::shell_quote(csv) + " --en1990 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["en1990"]["track"], "ballasted");
+  EXPECT_EQ(j["en1990"]["limit"], 3.5);
+  EXPECT_EQ(j["en1990"]["ok"], false);
+  ASSERT_EQ(j["en1990"]["checks"].size(), 2u);
+  EXPECT_EQ(j["en1990"]["checks"][1]["track"], "direct");
+  EXPECT_EQ(j["en1990"]["checks"][1]["limit"], 5.0);
+  EXPECT_EQ(j["en1990"]["checks"][1]["ok"], true);
+  // Before the file, and before another flag: that flag keeps its value.
+  const CliRun text = run_cli("stats --en1990 " + test::shell_quote(csv));
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find("ballasted track: limit 3.5 m/s^2; the peak EXCEEDS it"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("direct-fastened track: limit 5 m/s^2; the peak is within it"), std::string::npos)
+      << text.out;
+  const CliRun filtered = run_cli("stats " + test::shell_quote(csv) + " --en1990 --lowpass 30");
+  ASSERT_EQ(filtered.status, 0) << filtered.err;
+  EXPECT_NE(filtered.out.find("low-pass 30 Hz"), std::string::npos) << filtered.out;
+  EXPECT_NE(filtered.out.find("ballasted track: limit 3.5"), std::string::npos) << filtered.out;
+  // Named, one track only, as before.
+  const CliRun named = run_cli("stats " + test::shell_quote(csv) + " --en1990 direct --json");
+  ASSERT_EQ(named.status, 0) << named.err;
+  EXPECT_EQ(nlohmann::json::parse(named.out)["en1990"]["checks"].size(), 1u);
+}
+
 TEST(CmdStatsDeckAcceleration, NoAccelerationColumnOrABadTrackIsAnError) {
   const std::string csv = tmp("no_acc.csv");
   {

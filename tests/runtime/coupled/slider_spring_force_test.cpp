@@ -176,7 +176,7 @@ TEST(HertzContact, TangentMatchesFiniteDifferencesOfTheForce) {
 
 TEST(HertzContact, AWheelRestsAtTheHertzianPenetration) {
   const double W = kWheelMass * kG;
-  const double expected = std::pow(W / kHertz, 2.0 / 3.0);  // 4.6e-5 m
+  const double expected = std::pow(W / kHertz, 2.0 / 3.0);  // 9.87e-5 m
   // Newton converges to round-off of the equilibrium.
   constexpr double kStaticTol = 1e-9;
   const Model parked = Model::parse(

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "frontend/parse_model.h"
+#include "runtime/simulation/simulate.h"
 
 namespace mbfe {
 namespace {
@@ -33,6 +35,42 @@ TEST(ParseProbe, DisplacementAccelerationAndBody) {
   EXPECT_THROW(runtime::parse_probe("wheel"), runtime::InvalidRequest);
   EXPECT_THROW(runtime::parse_probe(":acc"), runtime::InvalidRequest);
   EXPECT_THROW(runtime::parse_probe("deck@x:acc"), runtime::InvalidRequest);
+  // Any other suffix: the message names the one there is.
+  try {
+    runtime::parse_probe("deck@10:vel");
+    ADD_FAILURE() << "accepted";
+  } catch (const runtime::InvalidRequest& e) {
+    EXPECT_NE(std::string(e.what()).find("'deck@10:vel': unknown suffix ':vel'; the only one is :acc (the "
+                                         "acceleration, m/s^2)"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("e.g. deck@10:acc"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ParseProbe, AnAccelerationOnATruncatedBeamIsRefusedFromTheModelFileAlone) {
+  // The ten-span catenary as shipped (both wires under policy truncate),
+  // parsed only: no modal analysis, no solver.
+  const ir::Model model =
+      frontend::load_model_file(std::string(MBFE_SOURCE_DIR) + "/models/pantograph_catenary_250.yaml");
+  runtime::SimulationRequest request;
+  request.integrator = runtime::parse_integrator("rk4");
+  request.probes = {runtime::parse_probe("contact_wire@300"), runtime::parse_probe("contact_wire@300:acc")};
+  try {
+    runtime::check_request_early(model, request);
+    ADD_FAILURE() << "accepted";
+  } catch (const runtime::InvalidInput& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("probe 'contact_wire@300:acc': beam 'contact_wire' has policy truncate"), std::string::npos) << m;
+    EXPECT_EQ(m.find("messenger"), std::string::npos) << m;
+    EXPECT_NE(m.find("'contact_wire@300'"), std::string::npos) << m;  // the displacement it may probe
+  }
+  // The displacement, a body's acceleration, or the original model: fine.
+  request.probes = {runtime::parse_probe("contact_wire@300"), runtime::parse_probe("head:acc")};
+  EXPECT_NO_THROW(runtime::check_request_early(model, request));
+  request.probes = {runtime::parse_probe("contact_wire@300:acc")};
+  request.adjust = false;
+  EXPECT_NO_THROW(runtime::check_request_early(model, request));
 }
 
 class Rows : public runtime::SimulationObserver {
