@@ -5,6 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake pkg-config git        # toolchain
+  ccache                                      # compile cache: pip's build reuses this build's objects
   libginac-dev libcln-dev ginac-tools         # symbolic derivation (generator)
   libeigen3-dev libspectra-dev                # dense/sparse linear algebra, Lanczos
   libyaml-cpp-dev                             # model files
