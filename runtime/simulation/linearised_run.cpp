@@ -1,3 +1,6 @@
+// The stepper of the linearised run (linearised_run.h): one class whose
+// state (modes, bodies, elements) every part of a step reads and writes;
+// split in files it would pass all of it around, so it is over 400 lines.
 #include "runtime/simulation/linearised_run.h"
 
 #include <Eigen/LU>
