@@ -21,6 +21,10 @@ constexpr int kMaxNewton = 30;
 // more than this share of the largest force (quadratic convergence gets
 // there in a step or two from the last step's forces).
 constexpr double kSettledForce = 1e-10;
+// Passes of the static start with damped moving contacts: the rate at rest
+// depends on the deflection through the slope under the contact, a small
+// correction the second pass takes; the third leaves round-off.
+constexpr int kStaticRatePasses = 3;
 // A pivot of a step's equilibrated system (every row and column scaled to a
 // largest entry of 1) below this: a body held by nothing (singular).
 constexpr double kSingularPivot = 1e-13;
@@ -128,6 +132,7 @@ class Runner {
     xc_.assign(static_cast<std::size_t>(nc_), 0.0);
     xdc_ = xc_;
     zc_ = xc_;
+    static_rate_ = xc_;
     was_active_.assign(static_cast<std::size_t>(nc_), false);
     if (start.static_start)
       static_start(out);
@@ -327,7 +332,8 @@ class Runner {
             fixed ? s_.fixed[static_cast<std::size_t>(e)].law : s_.contact_laws[static_cast<std::size_t>(i)];
         const double prev = fixed ? xf_[e] : xc_[static_cast<std::size_t>(i)];
         const double prev_rate = fixed ? xdf_[e] : xdc_[static_cast<std::size_t>(i)];
-        const double rate = statics ? 0.0 : rate_gain * (x[e] - prev) - prev_rate;
+        const double rate =
+            statics ? (fixed ? 0.0 : static_rate_[static_cast<std::size_t>(i)]) : rate_gain * (x[e] - prev) - prev_rate;
         laws[static_cast<std::size_t>(e)] = evaluate_law(law, x[e], rate, rate_gain);
       }
     };
@@ -436,10 +442,21 @@ class Runner {
     modal_load(0, fs);
     const Eigen::VectorXd eta_p = inv_d_.cwiseProduct(fs);
     gather_contacts(0);
-    solve_step(s_.stiffness, x_.rigid_loads.col(0), eta_p, /*statics=*/true);
-    modal_force(force_on_modes);
-    eta_ = eta_p - inv_d_.cwiseProduct(force_on_modes);
-    y_ = y_new_;
+    // A contact moving along the deflected beam has a rate at rest, and its
+    // damper a force, as the model's own static start has: the equilibrium
+    // with the dampers at the rates of the last pass (the rates depend on
+    // the deflection only through the slope under the contact).
+    bool damped = false;
+    for (const ActiveContact& c : active_)
+      damped = damped || s_.contact_laws[static_cast<std::size_t>(c.index)].damping != 0.0;
+    for (int pass = 0; pass < (damped ? kStaticRatePasses : 1); ++pass) {
+      solve_step(s_.stiffness, x_.rigid_loads.col(0), eta_p, /*statics=*/true);
+      modal_force(force_on_modes);
+      eta_ = eta_p - inv_d_.cwiseProduct(force_on_modes);
+      y_ = y_new_;
+      for (const ActiveContact& c : active_)
+        static_rate_[static_cast<std::size_t>(c.index)] = geometric_rate(0, c.index);
+    }
     // The contacts' rates at rest come from their motion along the beam.
     for (int f = 0; f < nf_; ++f) xf_[f] = x_new_[f];
     std::vector<bool> active(static_cast<std::size_t>(nc_), false);
@@ -452,7 +469,7 @@ class Runner {
     }
     for (std::size_t a = 0; a < active_.size(); ++a) {
       const int i = active_[a].index;
-      xdc_[static_cast<std::size_t>(i)] = geometric_rate(0, i);
+      xdc_[static_cast<std::size_t>(i)] = static_rate_[static_cast<std::size_t>(i)];
     }
     was_active_ = active;
   }
@@ -510,6 +527,7 @@ class Runner {
   Eigen::VectorXd eta_, v_, a_, y_, yd_, ydd_, y_new_, x_new_;
   Eigen::VectorXd xf_, xdf_, zf_;      // fixed elements: elongation, rate, force
   std::vector<double> xc_, xdc_, zc_;  // contacts
+  std::vector<double> static_rate_;    // contacts: the rate at rest of the static start (m/s)
   std::vector<bool> was_active_;
   std::vector<ActiveContact> active_;
 };
