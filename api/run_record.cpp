@@ -25,8 +25,29 @@ nlohmann::json adjustment_estimate_json(const runtime::AdjustmentEstimate& estim
                       {"band_change", p.band_change},
                       {"omega_band", p.omega_band}});
   nlohmann::json j = {{"points", points}, {"max", estimate.max}};
-  j["where"] = estimate.largest >= 0 ? nlohmann::json(estimate.points[static_cast<std::size_t>(estimate.largest)].what)
-                                     : nlohmann::json();
+  j["where"] = estimate.where.empty() ? nlohmann::json() : nlohmann::json(estimate.where);
+  if (estimate.linearised) {
+    const runtime::LinearisedEstimate& l = *estimate.linearised;
+    nlohmann::json contacts = nlohmann::json::array();
+    for (const runtime::LinearisedContactChange& c : l.contacts)
+      contacts.push_back(
+          {{"contact", c.contact}, {"relative", c.relative}, {"peak_change", c.peak_change}, {"peak", c.peak}});
+    const bool any = l.worst >= 0;
+    const runtime::LinearisedContactChange worst = any ? l.contacts[static_cast<std::size_t>(l.worst)]
+                                                       : runtime::LinearisedContactChange{};
+    j["linearised"] = {{"contact_force",
+                        {{"relative", worst.relative},
+                         {"contact", any ? nlohmann::json(worst.contact) : nlohmann::json()}}},
+                       {"peak_change", worst.peak_change},
+                       {"contacts", contacts},
+                       {"step", l.step},
+                       {"steps", l.steps},
+                       {"omega_excitation", l.omega_excitation},
+                       {"seconds", l.seconds},
+                       {"unconverged_steps", l.unconverged_steps}};
+  } else if (!estimate.linearised_unavailable.empty()) {
+    j["linearised"] = {{"not_estimated", estimate.linearised_unavailable}};
+  }
   j["not_estimated"] = estimate.not_estimated;
   nlohmann::json limits = nlohmann::json::array();
   for (const runtime::AdjustmentEstimate::Limit& l : estimate.limits)

@@ -56,7 +56,38 @@ py::object estimate_of(const rt::SimulationReport& report) {
   py::dict out;
   out["points"] = points;
   out["max"] = e.max;
-  out["where"] = e.largest >= 0 ? py::object(py::str(e.points[static_cast<std::size_t>(e.largest)].what)) : py::none();
+  out["where"] = e.where.empty() ? py::object(py::none()) : py::object(py::str(e.where));
+  if (e.linearised) {
+    const rt::LinearisedEstimate& l = *e.linearised;
+    py::list contacts;
+    for (const rt::LinearisedContactChange& c : l.contacts) {
+      py::dict d;
+      d["contact"] = c.contact;
+      d["relative"] = c.relative;
+      d["peak_change"] = c.peak_change;
+      d["peak"] = c.peak;
+      contacts.append(d);
+    }
+    const bool any = l.worst >= 0;
+    py::dict force;
+    force["relative"] = any ? l.contacts[static_cast<std::size_t>(l.worst)].relative : 0.0;
+    force["contact"] = any ? py::object(py::str(l.contacts[static_cast<std::size_t>(l.worst)].contact))
+                           : py::object(py::none());
+    py::dict block;
+    block["contact_force"] = force;
+    block["peak_change"] = any ? l.contacts[static_cast<std::size_t>(l.worst)].peak_change : 0.0;
+    block["contacts"] = contacts;
+    block["step"] = l.step;
+    block["steps"] = l.steps;
+    block["omega_excitation"] = l.omega_excitation;
+    block["seconds"] = l.seconds;
+    block["unconverged_steps"] = l.unconverged_steps;
+    out["linearised"] = block;
+  } else if (!e.linearised_unavailable.empty()) {
+    py::dict block;
+    block["not_estimated"] = e.linearised_unavailable;
+    out["linearised"] = block;
+  }
   out["not_estimated"] = e.not_estimated;
   py::list limits;
   for (const rt::AdjustmentEstimate::Limit& l : e.limits) {

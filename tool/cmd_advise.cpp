@@ -24,10 +24,13 @@ namespace {
 constexpr const char* kHelp = R"(Usage: mbfe advise MODEL.yaml --tolerance TOL [--steps N] [--set PATH=VALUE]
 
 Chooses, for every beam with an adjustment block, the lowest omega_limit
-whose accuracy estimate (the largest relative change the adjustment makes in
-the compliance where contacts, links and loads act; docs/damping-adjustment.md,
-"The accuracy estimate") stays at or below TOL, as `adjustment: {omega_limit:
-auto, tolerance: TOL}` would. Prints each beam's limit and its estimate, the
+whose accuracy estimate stays at or below TOL, as `adjustment: {omega_limit:
+auto, tolerance: TOL}` would (docs/damping-adjustment.md, "The accuracy
+estimate"): where it applies (slider_spring contacts, every beam's modes,
+no pin or slider_pin), the largest change the adjustment makes in a contact
+force over the model's t_end, by a linearised run of both models, with one
+limit common to the beams; elsewhere the largest relative change it makes
+in the compliance where contacts, links and loads act, beam by beam. Prints each beam's limit and its estimate, the
 stable step of each explicit integrator of the model so adjusted (mbfe
 stability's advisor), and an estimate of the wall time to the model's t_end:
 each explicit integrator at 0.9 of its stable step, against the original
@@ -122,14 +125,24 @@ int cmd_advise(const Args& args) {
   for (const runtime::AdjustmentEstimate::Limit& limit : estimate.limits) {
     double worst = 0.0;
     std::string where = "no contact, link or load on it";
-    for (const runtime::AdjustmentEstimatePoint& p : estimate.points)
-      if (p.beam == limit.beam && (where.rfind("no ", 0) == 0 || p.estimate > worst)) {
-        worst = p.estimate;
-        where = p.what;
-      }
+    if (estimate.linearised) {
+      // One figure for the whole model: the worst contact force of the run.
+      worst = estimate.max;
+      where = estimate.where.empty() ? "no contact pressing" : estimate.where;
+      where += " (the whole model, a linearised run over t_end)";
+    } else {
+      for (const runtime::AdjustmentEstimatePoint& p : estimate.points)
+        if (p.beam == limit.beam && (where.rfind("no ", 0) == 0 || p.estimate > worst)) {
+          worst = p.estimate;
+          where = p.what;
+        }
+    }
     std::cout << "  beam '" << limit.beam << "': omega_limit " << std::setprecision(4) << limit.omega_limit
               << " rad/s; estimate " << std::setprecision(3) << 100.0 * worst << " % at " << where << "\n";
   }
+  if (!estimate.linearised && !estimate.linearised_unavailable.empty())
+    std::cout << "  by the point figures: the linearised run does not apply (" << estimate.linearised_unavailable
+              << ")\n";
   for (const std::string& text : estimate.not_estimated) std::cout << "  not estimated: " << text << "\n";
 
   const runtime::SimulationRequest base = model.request();

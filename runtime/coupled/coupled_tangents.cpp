@@ -4,16 +4,15 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "runtime/multibody/rigid_system.h"
+#include "runtime/multibody/rigid_tangents.h"
 
 namespace mbfe::runtime {
 
 namespace {
 
-// Central-difference step of the force elements' Jacobians (and of the rigid
-// block where a solver has no Jacobian kernel), relative to the coordinate's
-// size: the cube root of machine epsilon balances truncation (h^2) against
-// round-off (eps / h).
+// Central-difference step of the force elements' Jacobians, relative to the
+// coordinate's size: the cube root of machine epsilon balances truncation
+// (h^2) against round-off (eps / h).
 constexpr double kDifferenceStep = 6e-6;
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -56,7 +55,7 @@ CoupledTangents::CoupledTangents(CoupledDynamics& dynamics, double t, const Eige
 
   std::vector<Eigen::Triplet<double>> tm, tc, tk;
   Eigen::MatrixXd K_b, C_b;
-  rigid_tangents(t, qm, vm, a, K_b, C_b);
+  rigid_dynamics_tangents(model_.kernels(), t, qm.data(), vm.data(), a.data(), K_b, C_b);
   Eigen::MatrixXd mb_free(nfb_, nfb_);
   for (int i = 0; i < nfb_; ++i) {
     for (int j = 0; j < nfb_; ++j) {
@@ -83,41 +82,6 @@ CoupledTangents::CoupledTangents(CoupledDynamics& dynamics, double t, const Eige
     mat->setFromTriplets(entries->begin(), entries->end());
   }
   for (const auto& s : model_.structures()) ws_.push_back(s->make_workspace());
-}
-
-void CoupledTangents::rigid_tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                                     const Eigen::VectorXd& a, Eigen::MatrixXd& K_b, Eigen::MatrixXd& C_b) const {
-  const mbfe_model_v1& kernels = model_.kernels();
-  if (kernels.dynamics_jacobians != nullptr) {
-    std::vector<double> jk(static_cast<std::size_t>(nb_ * nb_)), jc(jk.size());
-    kernels.dynamics_jacobians(q.data(), v.data(), a.data(), t, jk.data(), jc.data());
-    K_b = Eigen::Map<const RowMajor>(jk.data(), nb_, nb_);
-    C_b = Eigen::Map<const RowMajor>(jc.data(), nb_, nb_);
-    return;
-  }
-  // tau = M_b a + F_b - Q_b at the fixed a, by central differences.
-  K_b.setZero(nb_, nb_);
-  C_b.setZero(nb_, nb_);
-  RowMajor mb(nb_, nb_);
-  Eigen::VectorXd f(nb_), qf(nb_), plus(nb_), minus(nb_);
-  Eigen::VectorXd x = q.head(nb_), xd = v.head(nb_);
-  const Eigen::Map<const Eigen::VectorXd> ab(a.data(), nb_);
-  auto tau = [&](Eigen::VectorXd& out) {
-    evaluate_dynamics(kernels, x.data(), xd.data(), t, mb.data(), f.data(), qf.data());
-    out = mb * ab + f - qf;
-  };
-  for (int j = 0; j < nb_; ++j) {
-    for (Eigen::VectorXd* y : {&x, &xd}) {
-      const double y0 = (*y)[j];
-      const double h = kDifferenceStep * (1.0 + std::abs(y0));
-      (*y)[j] = y0 + h;
-      tau(plus);
-      (*y)[j] = y0 - h;
-      tau(minus);
-      (*y)[j] = y0;
-      (y == &x ? K_b : C_b).col(j) = (plus - minus) / (2.0 * h);
-    }
-  }
 }
 
 void CoupledTangents::element_tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,

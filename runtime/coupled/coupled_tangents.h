@@ -105,8 +105,6 @@ class CoupledTangents final : public StateOperator {
   // kept modes each way (a product by A reads Phi_L twice, not four times).
   void apply_sum(Part p1, const Eigen::Ref<const Eigen::VectorXd>& x1, Part p2,
                  const Eigen::Ref<const Eigen::VectorXd>& x2, Eigen::VectorXd& y) const;
-  void rigid_tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
-                      Eigen::MatrixXd& K_b, Eigen::MatrixXd& C_b) const;
   void element_tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                         std::vector<Eigen::Triplet<double>>& k, std::vector<Eigen::Triplet<double>>& c) const;
 

@@ -145,6 +145,32 @@ BeamModel analyse_beams(const ir::Model& model, const BeamAnalysisOptions& optio
   return out;
 }
 
+void readjust_beams(BeamModel& beams, const ir::Model& model, const std::vector<std::size_t>& which) {
+  for (const std::size_t i : which) {
+    BeamPart& part = beams.beams.at(i);
+    const ir::Beam& beam = model.beams.at(i);
+    part.has_adjustment = beam.adjustment.active();
+    try {
+      ir::Adjustment none;
+      none.policy = ir::AdjustmentPolicy::kNone;
+      part.adjusted = adjust_modes(part.original, part.has_adjustment ? beam.adjustment : none);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("beam '" + beam.name + "': " + e.what());
+    }
+    part.adjusted_spectrum = state_spectrum(adjusted_model_modes(part), part.basis.complete);
+  }
+  std::vector<ModalDynamics> all;
+  bool complete = true;
+  beams.any_adjustment = false;
+  for (const BeamPart& part : beams.beams) {
+    const std::vector<ModalDynamics> adjusted = adjusted_model_modes(part);
+    all.insert(all.end(), adjusted.begin(), adjusted.end());
+    complete = complete && part.basis.complete;
+    beams.any_adjustment = beams.any_adjustment || part.has_adjustment;
+  }
+  beams.adjusted = state_spectrum(all, complete);
+}
+
 std::unique_ptr<ModalBeamOde> modal_beam_ode(const BeamModel& beams, bool adjusted) {
   for (const BeamPart& b : beams.beams)
     if (!b.basis.complete)

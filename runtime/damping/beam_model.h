@@ -54,6 +54,12 @@ BeamPart analyse_beam(const ir::Beam& beam, const ir::Vec2& gravity, const BeamA
 /// their spectra. @throws as analyse_beam.
 BeamModel analyse_beams(const ir::Model& model, const BeamAnalysisOptions& options = {});
 
+/// Adjusts the beams `which` of `beams` again by their blocks in `model`
+/// (after a change of omega_limit: the modes stay, their adjusted dynamics
+/// and spectra are redone) and the union of the adjusted spectra.
+/// @throws std::invalid_argument as analyse_beam for a bad adjustment block.
+void readjust_beams(BeamModel& beams, const ir::Model& model, const std::vector<std::size_t>& which);
+
 /// The whole model in modal coordinates, original or adjusted modes.
 /// @throws std::invalid_argument if some beam has a partial basis.
 std::unique_ptr<ModalBeamOde> modal_beam_ode(const BeamModel& beams, bool adjusted);

@@ -10,6 +10,7 @@
 
 #include "runtime/damping/compliance_change.h"
 #include "runtime/errors/invalid_input.h"
+#include "runtime/simulation/linearised_estimate.h"
 
 namespace mbfe::runtime {
 
@@ -144,7 +145,8 @@ std::string unsupported(const ir::Beam& beam, const BeamPart& part) {
 
 }  // namespace
 
-AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::vector<ProbeSpec>& probes) {
+AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::vector<ProbeSpec>& probes,
+                                       const LinearisationPoint* start) {
   AdjustmentEstimate out;
   const ir::Model& ir = model.ir();
   const BeamModel& beams = model.beams();
@@ -202,17 +204,28 @@ AdjustmentEstimate estimate_adjustment(const AssembledModel& model, const std::v
       }
     }
   }
+  if (out.largest >= 0) out.where = out.points[static_cast<std::size_t>(out.largest)].what;
+  if (out.limits.empty()) return out;
+  // The linearised run, where it applies, is the estimate.
+  out.linearised_unavailable = linearised_run_unavailable(model);
+  if (!out.linearised_unavailable.empty()) return out;
+  try {
+    const LinearisedEstimate lms = linearised_estimate(model, start != nullptr ? *start : model_start(model));
+    if (lms.worst >= 0) {
+      out.max = lms.contacts[static_cast<std::size_t>(lms.worst)].relative;
+      out.where = "contact '" + lms.contacts[static_cast<std::size_t>(lms.worst)].contact + "' (slider_spring)";
+    } else {
+      out.max = 0.0;
+      out.where.clear();
+    }
+    out.linearised = lms;
+  } catch (const std::exception& e) {
+    out.linearised_unavailable = e.what();
+  }
   return out;
 }
 
 namespace {
-
-/// `x` rounded up to four significant digits (459.41... -> 459.5), as limits are printed.
-double readable(double x) {
-  if (!(x > 0.0) || !std::isfinite(x)) return x;
-  const double unit = std::pow(10.0, std::floor(std::log10(x)) - 3.0);
-  return std::ceil(x / unit) * unit;
-}
 
 /// Where choose_omega_limit's grid ends (rad/s): the limit whose capped root
 /// equals the fastest bounce sqrt(k / m) of a body on a linear contact spring
@@ -294,7 +307,7 @@ double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAn
     }
     pass = omega;
   }
-  if (fail == 0.0) return readable(pass);  // every limit down to the grid's bottom meets it
+  if (fail == 0.0) return readable_limit(pass);  // every limit down to the grid's bottom meets it
   constexpr int kBisections = 40;
   for (int k = 0; k < kBisections; ++k) {
     const double mid = std::sqrt(pass * fail);
@@ -302,30 +315,57 @@ double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAn
   }
   // The bisection ends just above a mode's fastest root, where the estimate
   // jumps: the limit a user reads and copies must be on the passing side.
-  const double shown = readable(pass);
+  const double shown = readable_limit(pass);
   return largest(shown) <= tolerance ? shown : pass;
 }
 
 std::string adjustment_notice(const AdjustmentEstimate& estimate, const ir::Model& model) {
-  if (estimate.largest < 0 || !(estimate.max > kAdjustmentNoticeThreshold)) return {};
+  if (!(estimate.max > kAdjustmentNoticeThreshold)) return {};
+  const auto policy_name = [](ir::AdjustmentPolicy p) {
+    return p == ir::AdjustmentPolicy::kMass        ? "mass"
+           : p == ir::AdjustmentPolicy::kCap       ? "cap"
+           : p == ir::AdjustmentPolicy::kPaperEq25 ? "paper_eq25"
+           : p == ir::AdjustmentPolicy::kTruncate  ? "truncate"
+                                                   : "keep_slow";
+  };
+  const auto remedy = [](ir::AdjustmentPolicy p) {
+    return p == ir::AdjustmentPolicy::kMass || p == ir::AdjustmentPolicy::kTruncate
+               ? "raise omega_limit"
+               : "raise omega_limit or use policy: mass";
+  };
+  std::ostringstream line;
+  line << std::setprecision(3);
+  if (estimate.linearised && estimate.linearised->worst >= 0) {
+    const LinearisedContactChange& c =
+        estimate.linearised->contacts[static_cast<std::size_t>(estimate.linearised->worst)];
+    // The contact's beam names the adjustment the user reads first.
+    const ir::Beam* beam = nullptr;
+    for (const ir::Contact& contact : model.contacts)
+      if (contact.name == c.contact && contact.beam >= 0) beam = &model.beams[static_cast<std::size_t>(contact.beam)];
+    line << "adjustment estimate: the adjustment changes the force of " << estimate.where << " by "
+         << 100.0 * c.relative << " % of its peak over the run (peak " << std::showpos << 100.0 * c.peak_change
+         << std::noshowpos << " %; a linearised run of both models";
+    if (beam != nullptr && beam->adjustment.active())
+      line << "; beam '" << beam->name << "': policy " << policy_name(beam->adjustment.policy) << ", omega_limit "
+           << beam->adjustment.omega_limit << " rad/s); "
+           << remedy(beam->adjustment.policy);
+    else
+      line << "); raise the adjusted beams' omega_limit";
+    line << " (docs/damping-adjustment.md, \"The accuracy estimate\")";
+    return line.str();
+  }
+  if (estimate.largest < 0) return {};
   const AdjustmentEstimatePoint& p = estimate.points[static_cast<std::size_t>(estimate.largest)];
   const ir::Beam* beam = nullptr;
   for (const ir::Beam& b : model.beams)
     if (b.name == p.beam) beam = &b;
   const ir::Adjustment a = beam ? beam->adjustment : ir::Adjustment{};
-  const bool mass = a.policy == ir::AdjustmentPolicy::kMass;
-  const char* policy = mass                                             ? "mass"
-                       : a.policy == ir::AdjustmentPolicy::kCap        ? "cap"
-                       : a.policy == ir::AdjustmentPolicy::kPaperEq25  ? "paper_eq25"
-                                                                       : "keep_slow";
-  std::ostringstream line;
-  line << std::setprecision(3) << "adjustment estimate: the adjusted modes of beam '" << p.beam
+  line << "adjustment estimate: the adjusted modes of beam '" << p.beam
        << "' change the compliance at " << p.what << " (" << (p.moving ? "largest at " : "") << "s = " << p.s
        << " m";
   if (p.omega > 0.0) line << ", at " << p.omega << " rad/s";
-  line << ") by " << 100.0 * p.estimate << " % (policy " << policy << ", omega_limit " << a.omega_limit
-       << " rad/s); " << (mass ? "raise omega_limit" : "raise omega_limit or use policy: mass")
-       << " (docs/damping-adjustment.md, \"The accuracy estimate\")";
+  line << ") by " << 100.0 * p.estimate << " % (policy " << policy_name(a.policy) << ", omega_limit " << a.omega_limit
+       << " rad/s); " << remedy(a.policy) << " (docs/damping-adjustment.md, \"The accuracy estimate\")";
   return line.str();
 }
 

@@ -1,9 +1,11 @@
 #include "runtime/simulation/assembled_model.h"
 
+#include <limits>
 #include <string>
 
 #include "runtime/errors/invalid_input.h"
 #include "runtime/simulation/adjustment_estimate.h"
+#include "runtime/simulation/linearised_estimate.h"
 #include "runtime/simulation/static_start_hints.h"
 #include "runtime/structure/adjusted_structures.h"
 
@@ -16,6 +18,30 @@ ModelKind model_kind(const ir::Model& model) {
   if (model.bodies.empty()) return ModelKind::kBeams;
   return ModelKind::kCoupled;
 }
+
+namespace {
+
+// omega_limit of an auto beam while its limit is being chosen: no mode is changed.
+constexpr double kAboveEveryMode = std::numeric_limits<double>::max();
+
+/// Whether the linearised run may choose omega_limit: auto (as far as the
+/// file tells before the beams are analysed: linearised_run_unavailable
+/// decides after).
+bool linearised_run_possible(const ir::Model& model, const BeamAnalysisOptions& options) {
+  if (model.bodies.empty() || model.beams.empty() || !model.constraints.empty() || model.dimension != 2) return false;
+  bool springs = false;
+  for (const ir::Contact& c : model.contacts) {
+    if (c.is_constraint()) return false;
+    springs = true;
+  }
+  for (const ir::Beam& b : model.beams)
+    if ((b.adjustment.active() && b.adjustment.scope == ir::AdjustmentScope::kJoined) ||
+        2 * (b.elements + 1) > options.dense_limit)
+      return false;
+  return springs;
+}
+
+}  // namespace
 
 AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, const BeamAnalysisOptions& beams)
     : model_(std::move(model)), kind_(model_kind(model_)) {
@@ -37,11 +63,18 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
   BeamAnalysisOptions options = beams;
   if (kind_ == ModelKind::kCoupled && options.sparse_modes == 0) options.sparse_modes = kLargeBeamModes;
   if (kind_ == ModelKind::kCoupled && !options.original_only) options.modes_kept_by_cap = true;
-  // omega_limit: auto, chosen for its tolerance before the beams are adjusted.
+  // omega_limit: auto, chosen for its tolerance before the beams are
+  // adjusted: by the linearised run where it applies (after the original
+  // model is built, below), else by the point figure of each beam.
+  const bool linearised = linearised_run_possible(model_, options);
+  std::vector<std::size_t> chosen_by_run;
   for (std::size_t i = 0; i < model_.beams.size(); ++i) {
     ir::Adjustment& a = model_.beams[i].adjustment;
     if (!a.present || !a.omega_limit_auto) continue;
-    if (a.policy != ir::AdjustmentPolicy::kNone) {
+    if (a.policy != ir::AdjustmentPolicy::kNone && linearised) {
+      chosen_by_run.push_back(i);
+      a.omega_limit = kAboveEveryMode;  // for now nothing is changed
+    } else if (a.policy != ir::AdjustmentPolicy::kNone) {
       try {
         a.omega_limit = choose_omega_limit(model_, i, options);
       } catch (const InvalidInput&) {
@@ -128,12 +161,38 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
     try {
       original_coupled_ = std::make_shared<const CoupledModel>(*kernels_, coupled_beams(beams_, false), bodies_,
                                                               model_.links, links_.rest, model_.contacts);
+    } catch (const std::invalid_argument& e) {
+      throw InvalidInput(model_.source_path + ": " + e.what());
+    }
+    if (!chosen_by_run.empty()) choose_limits_by_linearised_run(chosen_by_run, options);
+    try {
       if (beams_.any_adjustment && adjustment_unavailable_.empty())
         adjusted_coupled_ = std::make_shared<const CoupledModel>(*kernels_, coupled_beams(beams_, true, joined_),
                                                                 bodies_, model_.links, links_.rest, model_.contacts);
     } catch (const std::invalid_argument& e) {
       throw InvalidInput(model_.source_path + ": " + e.what());
     }
+  }
+}
+
+void AssembledModel::choose_limits_by_linearised_run(const std::vector<std::size_t>& beams,
+                                                     const BeamAnalysisOptions& options) {
+  std::vector<double> limits;
+  if (linearised_run_unavailable(*this).empty()) {
+    try {
+      limits.assign(beams.size(), choose_common_omega_limit(*this, beams, model_start(*this)));
+    } catch (const std::runtime_error&) {
+      // A singular linearised run (a body held by nothing at the start):
+      // the point figures below.
+    }
+  }
+  if (limits.empty())
+    for (const std::size_t i : beams) limits.push_back(choose_omega_limit(model_, i, options));
+  for (std::size_t k = 0; k < beams.size(); ++k) model_.beams[beams[k]].adjustment.omega_limit = limits[k];
+  try {
+    readjust_beams(beams_, model_, beams);
+  } catch (const std::invalid_argument& e) {
+    throw InvalidInput(model_.source_path + ": " + e.what());
   }
 }
 

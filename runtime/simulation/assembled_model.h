@@ -97,6 +97,10 @@ class AssembledModel {
   // do not reach its cap); empty when they can.
   std::string adjustment_unavailable_;
   ir::SourceLoc adjustment_unavailable_at_;  // the adjustment block it concerns
+  // omega_limit: auto of `beams` by the linearised run (linearised_estimate.h),
+  // their adjusted modes redone; the point figure's choice where that run
+  // cannot stand for the model.
+  void choose_limits_by_linearised_run(const std::vector<std::size_t>& beams, const BeamAnalysisOptions& options);
   // Modes computed of a coupled model's beam beyond the dense modal path.
   static constexpr int kLargeBeamModes = 40;
 };

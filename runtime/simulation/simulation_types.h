@@ -149,11 +149,43 @@ struct AdjustmentEstimatePoint {
   double omega_band = 0.0;           // rad/s: the frequency of band_change (0: the static change)
 };
 
+/// What the adjustment changes in one contact's force over a run, by the
+/// linearised run of both models (docs/damping-adjustment.md, "The accuracy
+/// estimate").
+struct LinearisedContactChange {
+  std::string contact;       // the slider_spring contact's name
+  double relative = 0.0;     // max_t |F_adj - F_orig| / max_t |F_orig|
+  double peak_change = 0.0;  // (max_t F_adj - max_t F_orig) / max_t F_orig (signed)
+  double peak = 0.0;         // N: max_t |F_orig|
+};
+
+/// The linearised run's estimate: every slider_spring contact's change, the
+/// worst of them, and what the two runs took.
+struct LinearisedEstimate {
+  std::vector<LinearisedContactChange> contacts;
+  int worst = -1;                 // index into contacts of the largest relative change, -1 when no contact pressed
+  double step = 0.0;              // s, Newmark's step
+  int steps = 0;
+  double omega_excitation = 0.0;  // rad/s: the fastest excitation the step resolves
+  double seconds = 0.0;           // wall time of the set-up and both runs
+  int unconverged_steps = 0;      // steps whose contact and link forces did not settle (both runs)
+};
+
 /// The estimate of an adjusted run, made before its first step.
 struct AdjustmentEstimate {
   std::vector<AdjustmentEstimatePoint> points;
-  int largest = -1;        // index into points of the largest estimate, -1 when none
-  double max = 0.0;        // points[largest].estimate, 0 when none
+  int largest = -1;        // index into points of the largest point estimate, -1 when none
+  /// The estimate: the linearised run's worst relative change of a contact
+  /// force where that run applies, else points[largest].estimate (0 when
+  /// there is neither).
+  double max = 0.0;
+  /// Where max is: "contact 'tyre' (slider_spring)", a point's `what`, or
+  /// empty when there is no estimate.
+  std::string where;
+  /// The linearised run's figures, absent where it does not apply; then
+  /// linearised_unavailable says why.
+  std::optional<LinearisedEstimate> linearised;
+  std::string linearised_unavailable;
   /// Every adjusted beam's omega_limit (rad/s), and whether it was chosen
   /// for a tolerance (omega_limit: auto).
   struct Limit {

@@ -1,5 +1,6 @@
 #include "runtime/simulation/simulator.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "runtime/errors/invalid_input.h"
@@ -42,7 +43,14 @@ Simulator::Simulator(const AssembledModel& model, const SimulationRequest& reque
   values_.resize(run_->layout().columns.size());
   notices_ = run_->notices();
   if (run_->adjusted()) {
-    estimate_ = estimate_adjustment(model, request.probes);
+    // From the run's own initial state, over the run.
+    LinearisationPoint start;
+    if (model.kind() == ModelKind::kCoupled) run_->full_state(0.0, run_->initial_state(), start.q, start.qd);
+    start.static_start = request.static_start.value_or(model.ir().initial.static_start);
+    start.t_end = request.t_end;
+    start.step_budget = static_cast<int>(
+        std::min(kLinearisedStepsPerRunStep * std::ceil(request.t_end / request.step), double{kLinearisedMaxSteps}));
+    estimate_ = estimate_adjustment(model, request.probes, &start);
     if (std::string line = adjustment_notice(*estimate_, model.ir()); !line.empty()) notices_.push_back(std::move(line));
   }
 }

@@ -92,6 +92,26 @@ class SameAsTheCommandLine(unittest.TestCase):
         self.assertEqual(run.adjustment_estimate["points"][0]["estimate"], expected["points"][0]["estimate"])
         self.assertTrue(any("adjustment estimate:" in n for n in run.notices))  # 4.3 %, above 1 %
         self.assertIsNone(m.simulate(t_end=0.01, adjust=False).adjustment_estimate)
+        # 10 steps: the linearised run would take more than 4 times the run's, so it is skipped.
+        self.assertIn("skipped", run.adjustment_estimate["linearised"]["not_estimated"])
+
+    def test_linearised_estimate_as_in_the_sidecar(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "c.csv")
+            # The whole run (1200 steps): the linearised run of both models is the estimate.
+            r = cli("simulate", model("bridge_moving_mass.yaml"), "--set", "beams.deck.adjustment.policy=cap",
+                    "--every", "100", "--quiet", "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(out + ".json") as f:
+                expected = json.load(f)["adjustment_estimate"]
+        run = mbfe.load(model("bridge_moving_mass.yaml"), set={"beams.deck.adjustment.policy": "cap"}).simulate()
+        lin = run.adjustment_estimate["linearised"]
+        self.assertEqual(lin["contact_force"], expected["linearised"]["contact_force"])
+        self.assertEqual(lin["contacts"], expected["linearised"]["contacts"])
+        self.assertEqual(lin["steps"], expected["linearised"]["steps"])
+        self.assertEqual(run.adjustment_estimate["max"], lin["contact_force"]["relative"])
+        self.assertEqual(lin["contact_force"]["contact"], "tyre")
+        self.assertGreater(lin["contact_force"]["relative"], 0.05)  # the cap at 2000 rad/s: about 20 %
 
     def test_npy_output_reads_back_as_the_run(self):
         with tempfile.TemporaryDirectory() as tmp:
