@@ -338,19 +338,22 @@ std::string adjustment_notice(const AdjustmentEstimate& estimate, const ir::Mode
   if (estimate.linearised && estimate.linearised->worst >= 0) {
     const LinearisedContactChange& c =
         estimate.linearised->contacts[static_cast<std::size_t>(estimate.linearised->worst)];
-    // The contact's beam names the adjustment the user reads first.
-    const ir::Beam* beam = nullptr;
-    for (const ir::Contact& contact : model.contacts)
-      if (contact.name == c.contact && contact.beam >= 0) beam = &model.beams[static_cast<std::size_t>(contact.beam)];
+    // The run is the whole model's: the change at one contact may come from
+    // another beam's adjustment (a wheel leaving a capped deck), so every
+    // adjusted beam is named, and the remedy suits the policies among them.
     line << "adjustment estimate: the adjustment changes the force of " << estimate.where << " by "
          << 100.0 * c.relative << " % of its peak over the run (peak " << std::showpos << 100.0 * c.peak_change
-         << std::noshowpos << " %; a linearised run of both models";
-    if (beam != nullptr && beam->adjustment.active())
-      line << "; beam '" << beam->name << "': policy " << policy_name(beam->adjustment.policy) << ", omega_limit "
-           << beam->adjustment.omega_limit << " rad/s); "
-           << remedy(beam->adjustment.policy);
-    else
-      line << "); raise the adjusted beams' omega_limit";
+         << std::noshowpos << " %; a linearised run of both models; adjusted beams:";
+    bool first = true, only_mass = true;
+    for (const ir::Beam& beam : model.beams) {
+      if (!beam.adjustment.active()) continue;
+      line << (first ? " '" : ", '") << beam.name << "' " << policy_name(beam.adjustment.policy) << " at "
+           << beam.adjustment.omega_limit << " rad/s";
+      first = false;
+      only_mass = only_mass && (beam.adjustment.policy == ir::AdjustmentPolicy::kMass ||
+                                beam.adjustment.policy == ir::AdjustmentPolicy::kTruncate);
+    }
+    line << "); " << (only_mass ? "raise omega_limit" : "raise omega_limit or use policy: mass");
     line << " (docs/damping-adjustment.md, \"The accuracy estimate\")";
     return line.str();
   }
