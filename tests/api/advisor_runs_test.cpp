@@ -128,7 +128,8 @@ TEST(AdvisorRuns, AVehicleReleasedFromItsStaticEquilibriumHasNoGrowingEigenvalue
   // linearised from their tangents (runtime/coupled/coupled_tangents.h), the
   // driven pair exactly zero; runtime/coupled/linearization.h tells what noise
   // remains from growth.
-  for (const char* name : {"bridge_moving_mass", "bridge_two_axle_vehicle", "vehicle_bridge_30m"}) {
+  for (const char* name :
+       {"bridge_moving_mass", "bridge_two_axle_vehicle", "vehicle_bridge_30m", "vehicle_random_track"}) {
     const Model model = Model::load(std::string(MBFE_SOURCE_DIR) + "/models/" + name + ".yaml");
     ASSERT_TRUE(model.ir().initial.static_start) << name;
     for (bool adjusted : {false, true}) {
