@@ -10,6 +10,7 @@
 
 #include "runtime/damping/compliance_change.h"
 #include "runtime/errors/invalid_input.h"
+#include "runtime/simulation/limit_search.h"
 #include "runtime/simulation/linearised_estimate.h"
 
 namespace mbfe::runtime {
@@ -294,29 +295,10 @@ double choose_omega_limit(const ir::Model& model, std::size_t beam, const BeamAn
   // fastest bounce of a body on a contact spring: a lower limit would not
   // lengthen any stable step, which that root then sets. Without such a
   // contact it stops at half the lowest mode.
+  // Each probe evaluates a few receptances: the search can be fine.
+  constexpr LimitSearchResolution kPointFigureSearch{40, 40};
   const double bottom = grid_bottom(model, adjustment, part.basis.omega[0]);
-  constexpr int kPerDecade = 40;
-  const int count = std::max(2, static_cast<int>(std::ceil(kPerDecade * std::log10(top / bottom))));
-  const double ratio = std::pow(top / bottom, 1.0 / count);
-  double pass = top, fail = 0.0;
-  for (int k = 1; k <= count; ++k) {
-    const double omega = top / std::pow(ratio, k);
-    if (largest(omega) > tolerance) {
-      fail = omega;
-      break;
-    }
-    pass = omega;
-  }
-  if (fail == 0.0) return readable_limit(pass);  // every limit down to the grid's bottom meets it
-  constexpr int kBisections = 40;
-  for (int k = 0; k < kBisections; ++k) {
-    const double mid = std::sqrt(pass * fail);
-    (largest(mid) > tolerance ? fail : pass) = mid;
-  }
-  // The bisection ends just above a mode's fastest root, where the estimate
-  // jumps: the limit a user reads and copies must be on the passing side.
-  const double shown = readable_limit(pass);
-  return largest(shown) <= tolerance ? shown : pass;
+  return lowest_limit_within(largest, tolerance, top, bottom, kPointFigureSearch);
 }
 
 std::string adjustment_notice(const AdjustmentEstimate& estimate, const ir::Model& model) {

@@ -13,18 +13,17 @@
 
 #include "runtime/errors/invalid_input.h"
 #include "runtime/platform/thread_budget.h"
+#include "runtime/simulation/limit_search.h"
 #include "runtime/simulation/static_start.h"
 
 namespace mbfe::runtime {
 
 namespace {
 
-// Grid points a decade of the search for omega_limit: auto (each is one
-// linearised run of the adjusted model).
-constexpr int kPerDecade = 10;
-// Bisections between the last passing and the first failing grid point:
-// the grid ratio 10^0.1 to within 1e-4.
-constexpr int kBisections = 10;
+// The search for omega_limit: auto, each probe one linearised run of the
+// adjusted model: 10 grid points a decade, then 10 bisections (the grid
+// ratio 10^0.1 to within 1e-4).
+constexpr LimitSearchResolution kLinearisedSearch{10, 10};
 
 /// Runs `a` and `b`, on two threads when the budget allows.
 void both(const std::function<void()>& a, const std::function<void()>& b) {
@@ -59,12 +58,6 @@ double worst_change(const LinearisedModel& lm, const LinearisedHistory& original
 }
 
 }  // namespace
-
-double readable_limit(double x) {
-  if (!(x > 0.0) || !std::isfinite(x)) return x;
-  const double unit = std::pow(10.0, std::floor(std::log10(x)) - 3.0);
-  return std::ceil(x / unit) * unit;
-}
 
 LinearisationPoint model_start(const AssembledModel& model) {
   LinearisationPoint point;
@@ -163,25 +156,7 @@ double choose_common_omega_limit(const AssembledModel& model, const std::vector<
        << " (a linearised run of both models); lower zeta_min or raise the tolerance";
     throw InvalidInput(os.str());
   }
-  const double bottom = 0.5 * lowest;
-  const int count = std::max(2, static_cast<int>(std::ceil(kPerDecade * std::log10(top / bottom))));
-  const double ratio = std::pow(top / bottom, 1.0 / count);
-  double pass = top, fail = 0.0;
-  for (int k = 1; k <= count; ++k) {
-    const double omega = top / std::pow(ratio, k);
-    if (largest(omega) > tolerance) {
-      fail = omega;
-      break;
-    }
-    pass = omega;
-  }
-  if (fail == 0.0) return readable_limit(pass);
-  for (int k = 0; k < kBisections; ++k) {
-    const double mid = std::sqrt(pass * fail);
-    (largest(mid) > tolerance ? fail : pass) = mid;
-  }
-  const double shown = readable_limit(pass);
-  return largest(shown) <= tolerance ? shown : pass;
+  return lowest_limit_within(largest, tolerance, top, 0.5 * lowest, kLinearisedSearch);
 }
 
 }  // namespace mbfe::runtime

@@ -35,10 +35,6 @@ LinearisedEstimate compare_contact_forces(const std::vector<std::string>& contac
 /// when it would take more than point.step_budget steps.
 LinearisedEstimate linearised_estimate(const AssembledModel& model, const LinearisationPoint& point);
 
-/// `x` (> 0) rounded up to four significant digits (459.41... -> 459.5), as
-/// chosen limits are printed and checked.
-double readable_limit(double x);
-
 /// omega_limit: auto by the linearised run. The beams `auto_beams` (their
 /// adjustment blocks as the model file gives them; each must be analysed
 /// with every mode, in `model` under any limit) take one common limit, the
