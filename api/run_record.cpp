@@ -56,6 +56,20 @@ nlohmann::json adjustment_estimate_json(const runtime::AdjustmentEstimate& estim
   return j;
 }
 
+nlohmann::json spring_tallies_json(const runtime::SimulationReport& report) {
+  nlohmann::json springs = nlohmann::json::array();
+  for (const runtime::SpringContactTally& c : report.springs)
+    springs.push_back({{"name", c.name}, {"lift_offs", c.lift_offs}, {"time_off", c.time_off}, {"touched", c.touched}});
+  return springs;
+}
+
+nlohmann::json link_tallies_json(const runtime::SimulationReport& report) {
+  nlohmann::json links = nlohmann::json::array();
+  for (const runtime::LinkSlackTally& l : report.links)
+    links.push_back({{"name", l.name}, {"slackenings", l.slackenings}, {"time_slack", l.time_slack}});
+  return links;
+}
+
 nlohmann::json run_record(const Model& model, const runtime::SimulationRequest& request,
                           const runtime::SimulationReport& report, const runtime::OutputLayout& layout,
                           std::size_t rows) {
@@ -79,14 +93,8 @@ nlohmann::json run_record(const Model& model, const runtime::SimulationRequest& 
   if (report.run.newton.iterations > 0)
     j["newton"] = {{"iterations", report.run.newton.iterations},
                    {"factorizations", report.run.newton.factorizations}};
-  nlohmann::json springs = nlohmann::json::array();
-  for (const runtime::SpringContactTally& c : report.springs)
-    springs.push_back({{"name", c.name}, {"lift_offs", c.lift_offs}, {"time_off", c.time_off}, {"touched", c.touched}});
-  if (!springs.empty()) j["springs"] = springs;
-  nlohmann::json links = nlohmann::json::array();
-  for (const runtime::LinkSlackTally& l : report.links)
-    links.push_back({{"name", l.name}, {"slackenings", l.slackenings}, {"time_slack", l.time_slack}});
-  if (!links.empty()) j["links"] = links;
+  if (!report.springs.empty()) j["springs"] = spring_tallies_json(report);
+  if (!report.links.empty()) j["links"] = link_tallies_json(report);
   nlohmann::json warnings = nlohmann::json::array();
   for (const std::string& w : model_warnings(model.ir())) warnings.push_back(w);
   for (const std::string& w : run_warnings(model.ir(), report)) warnings.push_back(w);

@@ -27,6 +27,12 @@ nlohmann::json run_record(const Model& model, const runtime::SimulationRequest& 
 /// "omega_limits": [{beam, omega_limit (rad/s), chosen (omega_limit: auto)}]}.
 nlohmann::json adjustment_estimate_json(const runtime::AdjustmentEstimate& estimate);
 
+/// [{name, lift_offs, time_off (s), touched}], a slider_spring's each.
+nlohmann::json spring_tallies_json(const runtime::SimulationReport& report);
+
+/// [{name, slackenings, time_slack (s)}], each link that can go slack.
+nlohmann::json link_tallies_json(const runtime::SimulationReport& report);
+
 /// Writes `record` to results_path + ".json", unless the results went to a
 /// device or a pipe (--out /dev/null: no file to describe, and no
 /// "/dev/null.json" to leave behind).

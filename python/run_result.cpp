@@ -5,100 +5,20 @@
 
 #include <algorithm>
 
+#include "api/run_record.h"
+#include "python/json_objects.h"
+
 namespace mbfe::python {
 
-py::list tallies(const rt::SimulationReport& report) {
-  py::list out;
-  for (const rt::SpringContactTally& s : report.springs) {
-    py::dict d;
-    d["name"] = s.name;
-    d["lift_offs"] = s.lift_offs;
-    d["time_off"] = s.time_off;
-    d["touched"] = s.touched;
-    out.append(d);
-  }
-  return out;
-}
+py::list tallies(const rt::SimulationReport& report) { return py::list(python_object(spring_tallies_json(report))); }
 
 py::list link_tallies(const rt::SimulationReport& report) {
-  py::list out;
-  for (const rt::LinkSlackTally& l : report.links) {
-    py::dict d;
-    d["name"] = l.name;
-    d["slackenings"] = l.slackenings;
-    d["time_slack"] = l.time_slack;
-    out.append(d);
-  }
-  return out;
+  return py::list(python_object(link_tallies_json(report)));
 }
 
 py::object estimate_of(const rt::SimulationReport& report) {
   if (!report.adjustment_estimate) return py::none();
-  const rt::AdjustmentEstimate& e = *report.adjustment_estimate;
-  py::list points;
-  for (const rt::AdjustmentEstimatePoint& p : e.points) {
-    py::dict d;
-    d["what"] = p.what;
-    d["beam"] = p.beam;
-    d["s"] = p.s;
-    d["moving"] = p.moving;
-    d["series_compliance"] = p.series_compliance;
-    d["omega"] = p.omega;
-    d["compliance"] = p.compliance;
-    d["static_change"] = p.static_change;
-    d["dynamic_change"] = p.dynamic_change;
-    d["changed_share"] = p.changed_share;
-    d["estimate"] = p.estimate;
-    d["band_change"] = p.band_change;
-    d["omega_band"] = p.omega_band;
-    points.append(d);
-  }
-  py::dict out;
-  out["points"] = points;
-  out["max"] = e.max;
-  out["where"] = e.where.empty() ? py::object(py::none()) : py::object(py::str(e.where));
-  if (e.linearised) {
-    const rt::LinearisedEstimate& l = *e.linearised;
-    py::list contacts;
-    for (const rt::LinearisedContactChange& c : l.contacts) {
-      py::dict d;
-      d["contact"] = c.contact;
-      d["relative"] = c.relative;
-      d["peak_change"] = c.peak_change;
-      d["peak"] = c.peak;
-      contacts.append(d);
-    }
-    const bool any = l.worst >= 0;
-    py::dict force;
-    force["relative"] = any ? l.contacts[static_cast<std::size_t>(l.worst)].relative : 0.0;
-    force["contact"] = any ? py::object(py::str(l.contacts[static_cast<std::size_t>(l.worst)].contact))
-                           : py::object(py::none());
-    py::dict block;
-    block["contact_force"] = force;
-    block["peak_change"] = any ? l.contacts[static_cast<std::size_t>(l.worst)].peak_change : 0.0;
-    block["contacts"] = contacts;
-    block["step"] = l.step;
-    block["steps"] = l.steps;
-    block["omega_excitation"] = l.omega_excitation;
-    block["seconds"] = l.seconds;
-    block["unconverged_steps"] = l.unconverged_steps;
-    out["linearised"] = block;
-  } else if (!e.linearised_unavailable.empty()) {
-    py::dict block;
-    block["not_estimated"] = e.linearised_unavailable;
-    out["linearised"] = block;
-  }
-  out["not_estimated"] = e.not_estimated;
-  py::list limits;
-  for (const rt::AdjustmentEstimate::Limit& l : e.limits) {
-    py::dict d;
-    d["beam"] = l.beam;
-    d["omega_limit"] = l.omega_limit;
-    d["chosen"] = l.chosen;
-    limits.append(d);
-  }
-  out["omega_limits"] = limits;
-  return out;
+  return python_object(adjustment_estimate_json(*report.adjustment_estimate));
 }
 
 Result result_of(const Columns& rows, const rt::SimulationReport& report) {

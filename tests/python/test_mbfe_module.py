@@ -70,11 +70,14 @@ class SameAsTheCommandLine(unittest.TestCase):
                     "--quiet", "--out", out)
             self.assertEqual(r.returncode, 0, r.stderr)
             header, rows = read_csv(out)
+            with open(out + ".json") as f:
+                sidecar_springs = json.load(f)["springs"]
         run = mbfe.load(model("bridge_moving_mass.yaml")).simulate(t_end=0.3, probes=["deck@10"])
         self.assertEqual(run.columns, header)
         np.testing.assert_array_equal(run["deck@10"], rows[:, header.index("deck@10")])
         np.testing.assert_array_equal(run["force_tyre"], rows[:, header.index("force_tyre")])
         self.assertEqual(run.springs[0]["name"], "tyre")
+        self.assertEqual(run.springs, sidecar_springs)
 
     def test_adjustment_estimate_as_in_the_sidecar(self):
         with tempfile.TemporaryDirectory() as tmp:
@@ -90,6 +93,7 @@ class SameAsTheCommandLine(unittest.TestCase):
         self.assertEqual(run.adjustment_estimate["max"], expected["max"])
         self.assertEqual(run.adjustment_estimate["where"], expected["where"])
         self.assertEqual(run.adjustment_estimate["points"][0]["estimate"], expected["points"][0]["estimate"])
+        self.assertEqual(run.adjustment_estimate, expected)  # every field, as the sidecar has it
         self.assertTrue(any("adjustment estimate:" in n for n in run.notices))  # 4.3 %, above 1 %
         self.assertIsNone(m.simulate(t_end=0.01, adjust=False).adjustment_estimate)
         # 10 steps: the linearised run would take more than 4 times the run's, so it is skipped.
@@ -109,6 +113,9 @@ class SameAsTheCommandLine(unittest.TestCase):
         self.assertEqual(lin["contact_force"], expected["linearised"]["contact_force"])
         self.assertEqual(lin["contacts"], expected["linearised"]["contacts"])
         self.assertEqual(lin["steps"], expected["linearised"]["steps"])
+        # Every field but the wall time the linearised runs took.
+        del lin["seconds"], expected["linearised"]["seconds"]
+        self.assertEqual(run.adjustment_estimate, expected)
         self.assertEqual(run.adjustment_estimate["max"], lin["contact_force"]["relative"])
         self.assertEqual(lin["contact_force"]["contact"], "tyre")
         self.assertGreater(lin["contact_force"]["relative"], 0.05)  # the cap at 2000 rad/s: about 20 %
