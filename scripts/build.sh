@@ -3,11 +3,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
-# With ccache (install-deps.sh installs it) a second build of the same sources,
-# such as `pip install .`'s own build folder (setup.py), compiles little.
-launcher=()
-if command -v ccache >/dev/null; then
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
-fi
+# Through ccache when it is there: a second build of the same sources, such as
+# `pip install .`'s own build folder (setup.py), compiles little.
+source scripts/ccache-launcher.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" "$@" >/dev/null
 cmake --build build -j"$jobs"

@@ -23,7 +23,10 @@ jobs="${MBFE_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 # linked without PIE: the sanitizers' metadata makes millions of relocations
 # that a PIE applies at every start, about 0.4 s for each of the suite's
 # nearly thousand test processes and each mbfe they run.
-cmake -S . -B "$build_dir" \
+# Through ccache when it is there (scripts/ccache-launcher.sh): the next run
+# in the same folder compiles only what changed.
+source scripts/ccache-launcher.sh
+cmake -S . -B "$build_dir" "${launcher[@]}" \
   -DMBFE_SANITIZE=ON \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
