@@ -28,6 +28,9 @@
 //
 // --a-t-end T: run (a) only to T and scale its time to 1 s (default 1: the
 // whole second). The markdown table goes to FILE (default: stdout only).
+//
+// One file of about 410 lines because it is one program: the rows (a)-(e) are
+// one Study against one exact reference; its runs are accuracy_study_runs.h.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

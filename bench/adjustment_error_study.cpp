@@ -37,6 +37,10 @@
 //   statistics (a study with `statistics:`) each contact force's statistics of
 //              `mbfe stats` (mean, std, mean +- 3 std, max, min after the
 //              low-pass), (s - s_ref) / mean_ref
+//
+// One file of about 620 lines because it is one program and its parts (the
+// studies file, the run cache, the comparison by class, the markdown tables)
+// serve this study alone; main is the loop over the studies, one section each.
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>

@@ -6,7 +6,12 @@
 //
 // A CoupledDynamics pairs the constant model (shared between runs and
 // threads) with the workspace of one run (CoupledData): building one costs
-// allocations, nothing more. Evaluating allocates nothing after the first call.
+// allocations, nothing more. Evaluating allocates nothing after the first call
+// but for one thing: a column M_c^-1 e_k (inverse_mass_column) is allocated,
+// then kept, the first time a constraint contact touches DOF k, so a slider
+// pin allocates as it reaches new elements. solve_augmented (the augmented
+// formulation; the implicit system's and the tangents' accelerations) forms
+// its saddle-point matrix and LU anew, allocating, at every call.
 #pragma once
 
 #include <Eigen/Core>

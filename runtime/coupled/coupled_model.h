@@ -9,7 +9,7 @@
 // the adjusted structures over them (M_c, C_c, K_c: runtime/structure/), the
 // constraint contacts (Phi), the force elements (f_b, f_c: slider springs,
 // links, time loads) and the driven coordinates. Everything a run writes into
-// lives in a CoupledData (coupled_data.h), one per run or thread; the
+// lives in a CoupledData (coupled_dynamics.h), one per run or thread; the
 // algorithms (coupled_dynamics.h, the formulations, the implicit system) read
 // the model and write the data.
 #pragma once

@@ -4,7 +4,7 @@
 // closed by Newton at every evaluation, in split coordinates when its adjusted
 // beams allow; the augmented one y = [q_b; q_c; q_b'; q_c'] with the
 // multipliers (a cross-check; |Phi| drifts); the implicit integrators the
-// index-3 form. About 410 lines: the run (CoupledRun) holds the formulation,
+// index-3 form. About 440 lines: the run (CoupledRun) holds the formulation,
 // the output layout and the tallies of one run, which its observers read.
 #include <algorithm>
 #include <cmath>

@@ -22,8 +22,9 @@
 // Newton block and the split coordinates all rest on it. (For B = K the
 // closed form's 1 / (mu b) is large on the lowest modes; there the kept modes'
 // part of B^-1 r / mu is taken out by projection instead: see
-// free_acceleration.) Phi_L is held once, row-major (the split coordinates
-// read it a row at a time).
+// free_acceleration.) The operator holds Phi_L once, row-major (the split
+// coordinates read it a row at a time): a copy of the leading columns of the
+// modal basis it was built from, which keeps its own.
 #pragma once
 
 #include <Eigen/Core>

@@ -4,6 +4,9 @@
 // concurrent first runs, damaged and stale entries, entries of another model,
 // folders writable or owned by others, a failing or interrupted compiler, and
 // content-addressed keys. The trust model is in docs/robustness.md.
+// One file of about 580 lines because every test uses the one fixture below
+// (a private cache folder, its entries and leftovers, forged hashes, a planted
+// library, the rebuild check): the cache's trust model is checked in one place.
 #include <gtest/gtest.h>
 #include <pwd.h>
 #include <sys/stat.h>

@@ -25,6 +25,9 @@ one tree with a spherical joint and a free one, and loop models (a spatial
 one with each kind of constraint, and a planar one). `mbfe eval --json` gives
 the generated kernels' values. Run by CTest (sympy_spatial_oracle) with
 MBFE_CLI pointing at the built mbfe.
+
+One file of about 500 lines because the oracle (the forward kinematics, Kane's
+terms and the loop rows, written here) is most of it and serves this test alone.
 """
 import json
 import math

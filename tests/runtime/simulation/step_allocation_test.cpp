@@ -1,6 +1,9 @@
-// The explicit step of a coupled run allocates nothing on the heap once the
-// run has started: every scratch vector lives in the run's workspace
-// (CoupledData, the steppers' stages), sized at the first evaluation.
+// The explicit step of a coupled run in the partitioned formulation (nodal or
+// in split coordinates) allocates nothing on the heap once the run has
+// started: every scratch vector lives in the run's workspace (CoupledData, the
+// steppers' stages), sized at the first evaluation, but for a column of
+// M_c^-1 the first time a constraint contact touches a DOF (coupled_dynamics.h).
+// The augmented formulation, which allocates at every evaluation, is not run here.
 //
 // The oracle is the C library's own count: this file interposes malloc and
 // its relatives for the test binary (glibc's __libc_* entry points do the
