@@ -42,7 +42,15 @@ void ModelParser::parse(const YAML::Node& root) {
   check_expression_budget(top);
   if (const Field* contacts = top.find("contacts")) parse_contacts(top, *contacts);
   if (const Field* links = top.find("links")) parse_links(top, *links);
-  if (const Field* constraints = top.find("constraints")) parse_constraints(top, *constraints);
+  if (const Field* constraints = top.find("constraints")) {
+    // The coupled run (beams) integrates the tree and closes contacts; it
+    // has no loop closure, so it would run the linkage open.
+    if (!model_.beams.empty())
+      top.fail(constraints->key_loc,
+               "constraints: a model with beams cannot have closed loops yet: its run would leave them open; "
+               "remove the beams, or the constraints");
+    parse_constraints(top, *constraints);
+  }
   check_joined_adjustments(top);
   check_output_columns(top);
   // Missing coordinates are 0; a missing quaternion is the identity (1, 0, 0, 0).

@@ -47,7 +47,7 @@
 //   output_name_contact_force, output_name_pin_multiplier, output_name_link_tension,
 //   output_name_loop_residual (a body so named in a model with closed loops)
 // - spatial models and closed loops: spatial_zero_axis, spatial_inertia_triangle,
-//   spatial_with_beam, constraint_same_body
+//   spatial_with_beam, constraint_same_body, loops_with_beam
 // - expressions in t whose constant parts have no value: expression_division_by_zero,
 //   expression_zero_over_zero, expression_log_of_zero, expression_log_of_negative,
 //   expression_sqrt_of_negative, expression_zero_to_zero, expression_negative_power_of_zero,
