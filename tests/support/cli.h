@@ -65,7 +65,7 @@ inline CliRun run_cli(const std::string& args, const std::string& env_prefix = "
 /// reserve terabytes of address space), 4 GB of it, so that a regression fails
 /// its test instead of exhausting the machine.
 inline std::string bounded_run_prefix() {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || defined(MBFE_SANITIZED_BUILD)
   return "timeout 60";
 #else
   return "ulimit -v 4000000 && timeout 60";

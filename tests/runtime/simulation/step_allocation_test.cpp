@@ -19,7 +19,7 @@
 #include "api/mbfe.h"
 #include "api/simulator.h"
 
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || defined(MBFE_SANITIZED_BUILD)
 #define MBFE_COUNT_MALLOC 0
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
