@@ -25,7 +25,7 @@ CoupledImplicitSystem::CoupledImplicitSystem(std::shared_ptr<CoupledDynamics> dy
       throw std::invalid_argument("beam '" + s->name() +
                                   "': the implicit integrators take a beam's sparse C and K, with a low-rank part "
                                   "for the adjustment's cap; this adjustment changes every mode on its own (policy "
-                                  "keep_slow or paper_eq25): run it explicitly, or with --adjust off");
+                                  "keep_slow or paper_eq25): run it explicitly, or with adjust off");
     }
   }
   const int nb = model_.nb(), nc = model_.nc();

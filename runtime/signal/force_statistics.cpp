@@ -73,7 +73,7 @@ ForceStatistics force_statistics(const std::vector<double>& t, const std::vector
       if (!(std::abs((t[i] - t[i - 1]) - dt) <= kEvenSpacing * dt)) {
         std::ostringstream os;
         os << "the samples are not evenly spaced (t = " << t[i - 1] << " to " << t[i] << " s against " << dt
-           << " s at the start); the filter needs rows every step or every N steps (mbfe simulate --every N)";
+           << " s at the start); the filter needs rows every step or every N steps";
         throw std::invalid_argument(os.str());
       }
     }

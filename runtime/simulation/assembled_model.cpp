@@ -130,7 +130,7 @@ AssembledModel::AssembledModel(ir::Model model, const mbfe_model_v1* kernels, co
         why = "its " + std::to_string(part.basis.omega.size()) + " lowest modes do not reach its adjustment's limit";
       adjustment_unavailable_ = "beam '" + part.system.name + "' has " + std::to_string(part.system.M.rows()) +
                                 " DOFs, beyond the dense modal analysis (" + std::to_string(options.dense_limit) +
-                                "), and " + why + "; run the original model (--adjust off), e.g. with generalized_alpha";
+                                "), and " + why + "; run the original model (adjust off), e.g. with generalized_alpha";
     }
   }
   // Policy mass in a coupled model is built on the beam's stiffness
@@ -202,7 +202,7 @@ bool AssembledModel::resolve_adjusted(std::optional<bool> asked) const {
     throw InvalidInput(model_.source_path + ":" + std::to_string(adjustment_unavailable_at_.line) + ":" +
                        std::to_string(adjustment_unavailable_at_.column) + ": " + adjustment_unavailable_);
   if (adjusted && !beams_.any_adjustment)
-    throw InvalidInput("--adjust on: no beam of '" + model_.name +
+    throw InvalidInput("adjust on: no beam of '" + model_.name +
                        "' has an `adjustment:` block (e.g. adjustment: {omega_limit: 1.0e5, margin: 0.1})");
   return adjusted;
 }
@@ -215,7 +215,7 @@ void AssembledModel::refuse_truncation(bool adjusted, const std::string& what) c
     throw InvalidInput(model_.source_path + ":" + std::to_string(a.loc.line) + ":" + std::to_string(a.loc.column) +
                        ": beam '" + b.name + "' has policy truncate, which only an explicit integrator runs, in a "
                        "coupled model's split coordinates (no pin or slider_pin contacts, no joined structures); " +
-                       what + " (`mbfe simulate --adjust off` runs the original model)");
+                       what + " (adjust off runs the original model)");
   }
 }
 

@@ -101,7 +101,7 @@ class CoupledRun final : public ModelRun {
     });
     split_ = !index3_ && !augmented && adjusted_ && !beam_accelerations && dynamics_->split_low_rank_beams();
     if (adjusted_ && !split_)
-      model.refuse_truncation(true, augmented            ? "--formulation augmented steps the nodal form"
+      model.refuse_truncation(true, augmented            ? "the augmented formulation steps the nodal form"
                                     : beam_accelerations ? "a beam acceleration probe needs the nodal form"
                                                          : "this model cannot be split");
     if (split_) {
@@ -159,7 +159,7 @@ class CoupledRun final : public ModelRun {
         std::string text = "the initial state violates the contacts and was projected onto them:";
         if (!moved.empty()) text += " positions: " + moved + ";";
         if (!moved_rates.empty()) text += " velocities (per s): " + moved_rates + ";";
-        if (request.strict) throw InvalidInput(model.ir().source_path + ": " + text + " (--strict)");
+        if (request.strict) throw InvalidInput(model.ir().source_path + ": " + text + " (strict)");
         notices_.push_back(text);
       }
     }

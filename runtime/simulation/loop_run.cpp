@@ -57,7 +57,7 @@ class LoopRun final : public ModelRun {
       std::string text = "the initial state does not close the loops and was projected onto them:";
       if (!moved.empty()) text += " positions: " + moved + ";";
       if (!moved_rates.empty()) text += " velocities: " + moved_rates + ";";
-      if (request.strict) throw InvalidInput(model.ir().source_path + ": " + text + " (--strict)");
+      if (request.strict) throw InvalidInput(model.ir().source_path + ": " + text + " (strict)");
       notices_.push_back(text);
     }
     layout_.columns.push_back("t");

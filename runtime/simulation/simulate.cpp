@@ -75,7 +75,7 @@ void check_request_early(const ir::Model& model, const SimulationRequest& reques
         model.source_path + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": ";
     const std::string fixes = "probe the displacement ('" + place +
                               "') or a body's acceleration (BODY:acc), or run "
-                              "the original model (--adjust off)";
+                              "the original model (adjust off)";
     if (refused->name == probe.beam)
       throw InvalidInput(where + "probe '" + probe.label + "': beam '" + probe.beam +
                          "' has policy truncate: it moves in its kept modes alone, in split coordinates, which hold "

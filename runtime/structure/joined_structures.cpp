@@ -146,7 +146,7 @@ JoinedStructure analyse(const ir::Model& model, const BeamModel& beams, std::vec
                                                       " DOFs, beyond the dense modal analysis (" +
                                                       std::to_string(dense_limit) + "), and the modes its cap keeps "
                                                       "could not be found (" + e.what() +
-                                                      "); run the original model (--adjust off)");
+                                                      "); run the original model (adjust off)");
     }
   }
   const int k = static_cast<int>(s.basis.omega.size());

@@ -230,7 +230,7 @@ TEST(SimulateVehicle, AnInconsistentInitialStateIsAnnouncedOrRefused) {
   EXPECT_NE(r.err.find("link2 by "), std::string::npos) << r.err;  // the dependent coordinate moved
   const CliRun strict = run_cli(args + " --strict");
   EXPECT_EQ(strict.status, 2) << strict.all();
-  EXPECT_NE(strict.err.find("(--strict)"), std::string::npos) << strict.err;
+  EXPECT_NE(strict.err.find("(strict)"), std::string::npos) << strict.err;
   // The shipped, consistent start says nothing.
   const CliRun consistent = run_cli("simulate models/double_pendulum_beam.yaml --quiet --t-end 1e-4 --out " +
                                     shell_quote((dir / "ok.csv").string()));

@@ -159,7 +159,7 @@ TEST(LoopSystems, AnOpenInitialStateIsProjectedAndAnnounced) {
   const test::CliRun strict = test::run_cli(
       "simulate models/four_bar.yaml --t-end 0.01 --strict --set initial.q.coupler=-0.5 --out " + out);
   EXPECT_EQ(strict.status, 2) << strict.all();
-  EXPECT_NE(strict.err.find("(--strict)"), std::string::npos) << strict.err;
+  EXPECT_NE(strict.err.find("(strict)"), std::string::npos) << strict.err;
 }
 
 }  // namespace
