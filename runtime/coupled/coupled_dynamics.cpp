@@ -211,29 +211,36 @@ void CoupledDynamics::solve_augmented(double t, Eigen::VectorXd& qdd, Eigen::Vec
   // Beam accelerations eliminated with the constant, factored M_c:
   //   q_c'' = a_c0 - W lambda, so the saddle-point system shrinks to
   //   [[M_b, J_b^T], [J_b, -H]] [q_b''; lambda] = [r_b; gamma - J_c a_c0].
-  const CoupledData& d = data_;
+  // The matrix, its factors and the vectors live in the data, sized once.
+  CoupledData& d = data_;
   const int nb = model_->nb(), nc = model_->nc(), m = model_->m();
-  Eigen::MatrixXd a(nb + m, nb + m);
-  a.topLeftCorner(nb, nb) = d.mb;
-  a.topRightCorner(nb, m) = d.cv.jb.transpose();
-  a.bottomLeftCorner(m, nb) = d.cv.jb;
-  a.bottomRightCorner(m, m) = -d.h;
-  Eigen::VectorXd b(nb + m);
-  b.head(nb) = d.rb;
-  b.tail(m) = d.cv.gamma - d.gc;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
-  const double rc = lu.rcond();
-  if (!(rc >= kSingularRcond)) {
-    if (m > 0 && sigma_min(d.cv.jb * d.cv.jb.transpose()) < kSingularRcond * std::pow(constraint_scale(d.cv), 2)) {
-      throw_singular_constraints(model_->constraints(), d.cv.jb, t, rc, "saddle-point matrix");
+  d.a_matrix.resize(nb + m, nb + m);
+  d.a_matrix.topLeftCorner(nb, nb) = d.mb;
+  d.a_matrix.topRightCorner(nb, m) = d.cv.jb.transpose();
+  d.a_matrix.bottomLeftCorner(m, nb) = d.cv.jb;
+  d.a_matrix.bottomRightCorner(m, m) = -d.h;
+  d.a_rhs.resize(nb + m);
+  d.a_rhs.head(nb) = d.rb;
+  d.a_rhs.tail(m) = d.cv.gamma - d.gc;
+  d.a_lu.compute(d.a_matrix);
+  if (!(d.a_lu.rcond_lower_cheap() >= kSingularRcond || d.a_lu.rcond_lower() >= kSingularRcond)) {
+    // As in solve_partitioned: the lower bounds screen, and when both fail
+    // Eigen's full-pivoting LU and its 1-norm condition estimate decide.
+    const Eigen::FullPivLU<Eigen::MatrixXd> full(d.a_matrix);
+    const double rc = full.rcond();
+    if (!(rc >= kSingularRcond)) {
+      if (m > 0 && sigma_min(d.cv.jb * d.cv.jb.transpose()) < kSingularRcond * std::pow(constraint_scale(d.cv), 2)) {
+        throw_singular_constraints(model_->constraints(), d.cv.jb, t, rc, "saddle-point matrix");
+      }
+      throw_singular_mass_matrix(model_->kernels(), model_->bodies(), d.mb, t);
     }
-    throw_singular_mass_matrix(model_->kernels(), model_->bodies(), d.mb, t);
   }
-  const Eigen::VectorXd x = lu.solve(b);
+  d.a_lu.solve(d.a_rhs, d.a_x);
   qdd.resize(nb + nc);
-  qdd.head(nb) = x.head(nb);
-  lambda = x.tail(m);
-  qdd.tail(nc) = d.ac0 - d.w * lambda;
+  qdd.head(nb) = d.a_x.head(nb);
+  lambda = d.a_x.tail(m);
+  qdd.tail(nc) = d.ac0;
+  qdd.tail(nc).noalias() -= d.w * lambda;
 }
 
 void CoupledDynamics::solve_partitioned(double t, const Partition& p, Eigen::VectorXd& qdd,

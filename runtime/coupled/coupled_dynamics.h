@@ -11,7 +11,8 @@
 // then kept, the first time a constraint contact touches DOF k, so a slider
 // pin allocates as it reaches new elements. solve_augmented (the augmented
 // formulation; the implicit system's and the tangents' accelerations) forms
-// its saddle-point matrix and LU anew, allocating, at every call.
+// its saddle-point matrix and LU in the data too; only a matrix near singular,
+// which Eigen's full-pivoting LU then judges, allocates.
 #pragma once
 
 #include <Eigen/Core>
@@ -76,6 +77,10 @@ struct CoupledData {
   Eigen::MatrixXd w, h;
   Eigen::VectorXd gc;
   std::vector<std::vector<Eigen::VectorXd>> minv_col;
+  // solve_augmented: the saddle-point matrix, its right-hand side and solution.
+  Eigen::MatrixXd a_matrix;
+  Eigen::VectorXd a_rhs, a_x;
+  SmallLu a_lu;
   // solve_partitioned.
   Eigen::MatrixXd p_jv, p_ju, p_xju, p_xh, p_dir, p_a;
   Eigen::VectorXd p_d, p_rhs, p_base, p_b, p_x, p_mu;

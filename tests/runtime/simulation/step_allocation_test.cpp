@@ -3,7 +3,8 @@
 // started: every scratch vector lives in the run's workspace (CoupledData, the
 // steppers' stages), sized at the first evaluation, but for a column of
 // M_c^-1 the first time a constraint contact touches a DOF (coupled_dynamics.h).
-// The augmented formulation, which allocates at every evaluation, is not run here.
+// The augmented formulation's saddle-point solve keeps its matrix and factors
+// in the workspace too.
 //
 // The oracle is the C library's own count: this file interposes malloc and
 // its relatives for the test binary (glibc's __libc_* entry points do the
@@ -81,12 +82,14 @@ constexpr int kWarmUpSteps = 5;    // the workspace is sized by the first evalua
 constexpr int kCountedSteps = 20;
 
 long allocations_in_steps(const std::string& model_file, const std::string& integrator,
-                          const mbfe::ir::ModelOverrides& overrides = {}) {
+                          const mbfe::ir::ModelOverrides& overrides = {},
+                          mbfe::runtime::CoupledFormulation formulation = mbfe::runtime::CoupledFormulation::kPartitioned) {
   mbfe::LoadOptions options;
   options.overrides = overrides;
   const mbfe::Model model = mbfe::Model::load(std::string(MBFE_SOURCE_DIR) + "/" + model_file, options);
   mbfe::runtime::SimulationRequest request = model.request();
   request.integrator = mbfe::runtime::parse_integrator(integrator);
+  request.formulation = formulation;
   mbfe::Simulator sim(model, request);
   sim.advance_steps(kWarmUpSteps);
 #if MBFE_COUNT_MALLOC
@@ -116,9 +119,6 @@ TEST_P(StepAllocations, NoneAfterTheFirstSteps) {
 #endif
 }
 
-// A moving mass on an adjusted bridge (a slider spring, a driven joint), the
-// paper's platform (pin and slider constraints, partitioned), the two-span
-// catenary (wires in split coordinates, droppers as links).
 // The two-span catenary with its wires truncated: the state leaves their
 // zeros out, and the row passes keep their scratch in each wire's workspace.
 TEST(StepAllocationsTruncated, NoneAfterTheFirstSteps) {
@@ -131,6 +131,21 @@ TEST(StepAllocationsTruncated, NoneAfterTheFirstSteps) {
 #endif
 }
 
+// The paper's platform in the augmented formulation: the saddle-point system
+// of its pin and slider constraints is formed and solved at every evaluation.
+TEST(StepAllocationsAugmented, NoneAfterTheFirstSteps) {
+#if !MBFE_COUNT_MALLOC
+  GTEST_SKIP() << "malloc is not countable here (AddressSanitizer, or not glibc)";
+#else
+  EXPECT_EQ(allocations_in_steps("models/paper_platform.yaml", "rk4", {},
+                                 mbfe::runtime::CoupledFormulation::kAugmented),
+            0);
+#endif
+}
+
+// A moving mass on an adjusted bridge (a slider spring, a driven joint), the
+// paper's platform (pin and slider constraints, partitioned), the two-span
+// catenary (wires in split coordinates, droppers as links).
 INSTANTIATE_TEST_SUITE_P(CoupledModels, StepAllocations,
                          ::testing::Values(std::make_pair("models/bridge_moving_mass.yaml", "rk4"),
                                            std::make_pair("models/paper_platform.yaml", "rk4"),
