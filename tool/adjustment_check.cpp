@@ -103,7 +103,8 @@ double check_step(double run_step, double t_check, double omega) {
 }
 
 AdjustmentCheck check_adjustment(const Model& model, const runtime::SimulationRequest& run,
-                                 const runtime::SimulationReport& report, const RowsUpTo& adjusted, double t_check) {
+                                 const runtime::SimulationReport& report, const RowsUpTo& adjusted, double t_check,
+                                 const runtime::StepMonitor& keep_going) {
   AdjustmentCheck out;
   out.t_end = t_check;
   out.omega = resolved_frequency(
@@ -117,14 +118,17 @@ AdjustmentCheck check_adjustment(const Model& model, const runtime::SimulationRe
   request.every = 1;
   request.state_in_rows = false;
   RowsUpTo reference(t_check);
-  const runtime::SimulationReport original = model.simulate(request, reference);
+  const runtime::SimulationReport original = model.simulate(request, reference, keep_going);
   out.message = original.message;
+  out.interrupted = original.run.status == runtime::SimulationStatus::kInterrupted;
   std::tie(out.contact_force, out.displacement) = compare(model, adjusted, reference);
-  if (reference.t().empty()) return out;
+  if (reference.t().empty() || out.interrupted) return out;
   // The reference's own error: the same run at twice the step against it.
   request.step = 2.0 * out.step;
   RowsUpTo coarser(t_check);
-  if (model.simulate(request, coarser).message.empty())
+  const runtime::SimulationReport coarse = model.simulate(request, coarser, keep_going);
+  out.interrupted = coarse.run.status == runtime::SimulationStatus::kInterrupted;
+  if (coarse.message.empty())
     std::tie(out.reference_contact_force, out.reference_displacement) = compare(model, coarser, reference);
   return out;
 }

@@ -58,6 +58,9 @@ struct AdjustmentCheck {
   /// Empty when the original model's run completed; otherwise why not
   /// (the differences are then over the rows it reached).
   std::string message;
+  /// A signal stopped the check (the monitor said stop): the figures are
+  /// over the rows the original model's run reached.
+  bool interrupted = false;
 };
 
 /// The fastest frequency (rad/s) an adjusted run of `model` represents and its
@@ -77,9 +80,12 @@ double check_step(double run_step, double t_check, double omega);
 /// with `adjusted`, the rows of the adjusted run up to t_check (linear
 /// interpolation of the reference at the adjusted run's times); then the
 /// reference at twice its step against it, for the reference's own error.
+/// `keep_going` is asked before each step of both runs, as Model::simulate
+/// asks it; once it says stop, the check ends with what it has.
 /// @throws as Model::simulate for a request the original model cannot run.
 AdjustmentCheck check_adjustment(const Model& model, const runtime::SimulationRequest& run,
-                                 const runtime::SimulationReport& report, const RowsUpTo& adjusted, double t_check);
+                                 const runtime::SimulationReport& report, const RowsUpTo& adjusted, double t_check,
+                                 const runtime::StepMonitor& keep_going = {});
 
 /// The sidecar's "adjustment_check": {t_end, integrator, step, omega,
 /// contact_force: {relative, column}, displacement: {relative, column},

@@ -304,10 +304,12 @@ int cmd_simulate(const Args& args) {
   runtime::SimulationObserver& observer_used = check_until ? static_cast<runtime::SimulationObserver&>(results_and_kept)
                                                            : static_cast<runtime::SimulationObserver&>(results);
   runtime::SimulationReport report;
+  // Ctrl-C, SIGTERM, SIGHUP: the run (or the adjustment check after it) stops
+  // before its next step, whole rows written and the record beside them says
+  // so (exit status 3). One guard for both, so that no signal between them
+  // finds the default handler and loses the record.
+  const InterruptGuard interrupts;
   {
-    // Ctrl-C, SIGTERM, SIGHUP: the run stops before its next step, whole
-    // rows written and the record beside them says so (exit status 3).
-    const InterruptGuard interrupts;
     ProgressLine progress(!quiet, request.t_end);
     const runtime::StepMonitor keep_going = [&](double t, std::int64_t steps) {
       progress.update(t, steps);
@@ -337,12 +339,22 @@ int cmd_simulate(const Args& args) {
   nlohmann::json record = run_record(model, request, report, results.layout(), csv.rows());
   record["set"] = parsed.values("set");  // the --set values the run's model has, "PATH=VALUE" each, in order
   for (const std::string& w : run_warnings(model.ir(), report)) std::cerr << "mbfe: warning: " << w << "\n";
+  bool check_interrupted = false;
   if (check_until && report.message.empty()) {
-    const AdjustmentCheck check = check_adjustment(model, request, report, kept, *check_until);
+    // The check runs the original model, which can take longer than the run:
+    // a signal during it ends the check, and the run's rows and record stay.
+    const runtime::StepMonitor keep_going = [](double, std::int64_t) { return !InterruptGuard::interrupted(); };
+    const AdjustmentCheck check = check_adjustment(model, request, report, kept, *check_until, keep_going);
     record["adjustment_check"] = adjustment_check_json(check);
+    check_interrupted = check.interrupted;
     std::cerr << "mbfe: " << adjustment_check_line(check) << "\n";
   }
   if (out) write_run_record(*out, record);
+  if (check_interrupted) {
+    std::cerr << "mbfe simulate: the adjustment check was interrupted; the run's " << csv.rows() << " rows"
+              << (out ? " and its record are written to " + *out : std::string(" are written")) << "\n";
+    return 3;
+  }
   const runtime::SimulationResult& run = report.run;
   const std::string where = out ? " to " + *out : std::string();
   if (parsed.has("strict") && report.message.empty())

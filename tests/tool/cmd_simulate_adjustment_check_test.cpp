@@ -6,12 +6,17 @@
 // adjusted run.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "tests/support/cli.h"
 #include "tests/support/process.h"
@@ -122,6 +127,46 @@ TEST(SimulateAdjustmentCheck, ACheckWithoutAnAdjustedRunOrBeyondTheRunIsBadInput
   EXPECT_EQ(beyond.status, 2) << beyond.all();
   EXPECT_NE(beyond.err.find("--check-adjustment: expected a time in s in (0, t_end = 0.1"), std::string::npos)
       << beyond.err;
+}
+
+// The check runs the original model after the run, and can take longer: a
+// Ctrl-C during it ends the check, not mbfe, and what the run computed stays
+// (its rows, and the record beside them with the check's partial figures).
+TEST(SimulateAdjustmentCheck, ASignalDuringTheCheckKeepsTheRunsRowsAndRecord) {
+  TempDir dir;
+  const std::string model = std::string(MBFE_SOURCE_DIR) + "/models/bridge_moving_mass.yaml";
+  const fs::path csv = dir / "run.csv";
+  constexpr double kTEnd = 5.0;  // s: the check (generalized-alpha, h omega <= 0.05 at 2000 rad/s) takes 2e5 steps
+  Spawned run({MBFE_CLI, "simulate", model, "--quiet", "--t-end", "5", "--every", "10", "--check-adjustment", "5",
+               "--out", csv.string()},
+              {}, dir / "check.stdout", dir / "check.stderr");
+  ASSERT_GT(run.pid(), 0);
+  // The run has ended when its last row, at t_end, is in the CSV (rows are
+  // flushed at the end of the run, before the check starts).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(300);
+  bool run_ended = false;
+  while (run.running() && std::chrono::steady_clock::now() < deadline && !run_ended) {
+    const std::vector<std::string> lines = lines_of(slurp(csv));
+    // The last line may be cut (a row being written): strtod reads its start.
+    run_ended = lines.size() > 1 && std::abs(std::strtod(lines.back().c_str(), nullptr) - kTEnd) < kRowTimeTol;
+    if (!run_ended) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_TRUE(run_ended) << slurp(dir / "check.stderr");
+  ASSERT_TRUE(run.running()) << "the check ended before the signal: " << slurp(dir / "check.stderr");
+  ASSERT_EQ(::kill(run.pid(), SIGINT), 0);
+  const int status = run.wait_for(60);
+  ASSERT_NE(status, -1) << "mbfe did not stop within 60 s of the signal";
+  const std::string err = slurp(dir / "check.stderr");
+  EXPECT_EQ(status, 3) << err;
+  EXPECT_NE(err.find("mbfe simulate: the adjustment check was interrupted; the run's "), std::string::npos) << err;
+  const std::size_t rows = check_complete_csv(slurp(csv));
+  const nlohmann::json record = nlohmann::json::parse(slurp(csv.string() + ".json"), nullptr, false);
+  ASSERT_TRUE(record.is_object()) << slurp(csv.string() + ".json");
+  EXPECT_EQ(record.value("status", ""), "completed");
+  EXPECT_EQ(record.value("rows", -1L), static_cast<long>(rows));
+  ASSERT_TRUE(record.contains("adjustment_check"));
+  EXPECT_NE(record["adjustment_check"].value("message", "").find("interrupted at t = "), std::string::npos)
+      << record["adjustment_check"].dump();
 }
 
 }  // namespace
