@@ -183,6 +183,32 @@ TEST(ApiModel, RequestsTheModelCannotRunAreInvalidInput) {
   EXPECT_THROW(pendulum.evaluate(state), runtime::InvalidInput);
 }
 
+TEST(ApiModel, EvaluateRefusesAQuaternionOffUnitLength) {
+  // A free body, 1 kg, Ixx 0.1, centre of mass 0.5 m along y: about the
+  // body's x axis M = Ixx + m 0.5^2 = 0.35 for a unit quaternion, whatever
+  // the turn. (1, 0, 0, 1) is no rotation; the kernels would read it as one.
+  const Model model = Model::parse(
+      "model: tumbler\ndimension: 3\nbodies:\n"
+      "  - {name: box, parent: ground, joint: {type: free}, mass: 1.0, inertia: [0.1, 0.2, 0.3, 0, 0, 0],"
+      " com: [0, 0.5, 0]}\n",
+      "tumbler.yaml");
+  State state;
+  state.q = {0, 0, 0, 1, 0, 0, 1};
+  try {
+    model.evaluate(state);
+    FAIL() << "a quaternion of norm sqrt(2) was evaluated";
+  } catch (const runtime::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("q: the quaternion of body 'box' (box_qw .. box_qz) has norm 1.414213562, "
+                                         "expected 1 (within 1e-06)"),
+              std::string::npos)
+        << e.what();
+  }
+  const double h = std::sqrt(0.5);
+  state.q = {0, 0, 0, h, 0, 0, h};
+  EXPECT_NEAR(model.evaluate(state).M(3, 3), 0.35, kKernelTol);
+  EXPECT_NEAR(model.evaluate(State{}).M(3, 3), 0.35, kKernelTol);  // empty q: the identity quaternion
+}
+
 // Every call builds the workspace it writes: two threads on one Model give
 // the rows one thread gives.
 TEST(ApiModel, TwoThreadsSimulateOneModel) {
