@@ -74,7 +74,9 @@ struct LoadOptions {
 /// over the nv velocity coordinates) and, for a model
 /// with contacts, the constraints Phi, J_b = dPhi/dq_b, J_c = dPhi/dq_c and
 /// gamma = -(dJ/dt) q' (rows stacked over the contacts in file order: 2 per
-/// pin, 1 per slider_pin; J_c over every beam coordinate).
+/// pin, 1 per slider_pin; J_c over every beam coordinate); for a model with
+/// closed loops (`constraints:`), their Phi, J = dPhi/dv and gamma with
+/// J v' = gamma (the rows of `mbfe eval`'s "loops", docs/model-format.md).
 struct Evaluation {
   Eigen::MatrixXd M;  // nv x nv (nb x nb in a planar model)
   Eigen::VectorXd F, Q;
@@ -83,6 +85,10 @@ struct Evaluation {
   Eigen::MatrixXd jb;     // m x nb
   Eigen::MatrixXd jc;     // m x nc
   Eigen::VectorXd gamma;  // m
+  bool has_loops = false;
+  Eigen::VectorXd loop_phi;    // l (m, or a sine or cosine for an orientation row)
+  Eigen::MatrixXd loop_j;      // l x nv
+  Eigen::VectorXd loop_gamma;  // l
 };
 
 /// A state for evaluate(): rigid coordinates (nq positions; planar: one per

@@ -173,6 +173,17 @@ Evaluation Model::evaluate(const State& state) const {
   out.M = terms.M;
   out.F = terms.F;
   out.Q = terms.Q;
+  if (solver.num_loop_rows > 0) {
+    const int rows = solver.num_loop_rows, nv = layout.num_velocities;
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> j(rows, nv);
+    out.loop_phi.resize(rows);
+    out.loop_gamma.resize(rows);
+    solver.loop_constraints(q.data(), out.loop_phi.data());
+    solver.loop_jacobian(q.data(), j.data());
+    solver.loop_gamma(q.data(), qd.data(), out.loop_gamma.data());
+    out.loop_j = j;
+    out.has_loops = true;
+  }
   if (model.contacts.empty()) {
     if (!state.qc.empty() || !state.qcd.empty())
       throw runtime::InvalidInput("qc/qcd: model '" + model.name +
