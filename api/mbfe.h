@@ -70,23 +70,32 @@ struct LoadOptions {
   std::function<void(const ir::Model&)> on_read;
 };
 
-/// M(q), F(q, q'), Q(q, q', t) of the rigid part at one state and, for a model
+/// M(q), F(q, q'), Q(q, q', t) of the rigid part at one state (M v' + F = Q
+/// over the nv velocity coordinates) and, for a model
 /// with contacts, the constraints Phi, J_b = dPhi/dq_b, J_c = dPhi/dq_c and
 /// gamma = -(dJ/dt) q' (rows stacked over the contacts in file order: 2 per
-/// pin, 1 per slider_pin; J_c over every beam coordinate).
+/// pin, 1 per slider_pin; J_c over every beam coordinate); for a model with
+/// closed loops (`constraints:`), their Phi, J = dPhi/dv and gamma with
+/// J v' = gamma (the rows of `mbfe eval`'s "loops", docs/model-format.md).
 struct Evaluation {
-  Eigen::MatrixXd M;  // nb x nb
+  Eigen::MatrixXd M;  // nv x nv (nb x nb in a planar model)
   Eigen::VectorXd F, Q;
   bool has_constraints = false;
   Eigen::VectorXd phi;    // m
   Eigen::MatrixXd jb;     // m x nb
   Eigen::MatrixXd jc;     // m x nc
   Eigen::VectorXd gamma;  // m
+  bool has_loops = false;
+  Eigen::VectorXd loop_phi;    // l (m, or a sine or cosine for an orientation row)
+  Eigen::MatrixXd loop_j;      // l x nv
+  Eigen::VectorXd loop_gamma;  // l
 };
 
-/// A state for evaluate(): rigid coordinates and rates (one per body, model
-/// order), beam coordinates and rates (every beam's free DOFs, model order),
-/// time. Empty vectors mean zeros.
+/// A state for evaluate(): rigid coordinates (nq positions; planar: one per
+/// body) and rates (nv velocities; planar: one per body), model order, beam
+/// coordinates and rates (every beam's free DOFs, model order), time. Empty
+/// vectors mean zeros (and identity quaternions); a quaternion must be unit
+/// (within runtime::kUnitQuaternionTol).
 struct State {
   std::vector<double> q, qd, qc, qcd;
   double t = 0.0;  // s
@@ -137,7 +146,8 @@ class Model {
 
   /// M, F, Q and the constraints at `state`; driven coordinates and rates are
   /// the motion's at state.t. @throws runtime::InvalidInput for
-  /// a model without bodies or vectors of the wrong size;
+  /// a model without bodies, vectors of the wrong size or a quaternion off
+  /// unit length;
   /// runtime::SliderOffBeamError when a slider is off its beam.
   Evaluation evaluate(const State& state) const;
 

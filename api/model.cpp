@@ -8,6 +8,7 @@
 #include "ir/coordinate_layout.h"
 #include "runtime/fem/beam_system.h"
 #include "runtime/coupled/contact_constraints.h"
+#include "runtime/multibody/quaternion_check.h"
 #include "runtime/multibody/rigid_system.h"
 #include "runtime/simulation/assembled_model.h"
 #include "runtime/simulation/simulate.h"
@@ -147,6 +148,15 @@ Evaluation Model::evaluate(const State& state) const {
   const ir::CoordinateLayout layout = ir::coordinate_layout(model);
   Eigen::VectorXd q = state_vector(state.q, layout.num_positions, "q", "position coordinates, in model order");
   Eigen::VectorXd qd = state_vector(state.qd, layout.num_velocities, "qd", "velocity coordinates, in model order");
+  if (state.q.empty()) {  // zeros, and identity quaternions
+    for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+      const ir::JointType type = model.bodies[b].joint.type;
+      if (type == ir::JointType::kSpherical || type == ir::JointType::kFree)
+        q[layout.first_position[b] + (type == ir::JointType::kFree ? 3 : 0)] = 1.0;
+    }
+  }
+  if (const std::string wrong = runtime::non_unit_quaternion(model, q.data()); !wrong.empty())
+    throw runtime::InvalidInput("q: " + wrong);
   const mbfe_model_v1& solver = *shared_->solver;
   if (solver.num_driven > 0) {
     // Driven coordinates are the motion's at t, whatever the state says.
@@ -163,6 +173,17 @@ Evaluation Model::evaluate(const State& state) const {
   out.M = terms.M;
   out.F = terms.F;
   out.Q = terms.Q;
+  if (solver.num_loop_rows > 0) {
+    const int rows = solver.num_loop_rows, nv = layout.num_velocities;
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> j(rows, nv);
+    out.loop_phi.resize(rows);
+    out.loop_gamma.resize(rows);
+    solver.loop_constraints(q.data(), out.loop_phi.data());
+    solver.loop_jacobian(q.data(), j.data());
+    solver.loop_gamma(q.data(), qd.data(), out.loop_gamma.data());
+    out.loop_j = j;
+    out.has_loops = true;
+  }
   if (model.contacts.empty()) {
     if (!state.qc.empty() || !state.qcd.empty())
       throw runtime::InvalidInput("qc/qcd: model '" + model.name +

@@ -43,7 +43,10 @@ Joint ModelParser::parse_spatial_joint(const MapView& view) {
   const Field& type = view.require("type");
   joint.type = static_cast<JointType>(view.choice(type, {"revolute", "prismatic", "spherical", "free"}));
   joint.at3 = view.vec3_or("at", {0.0, 0.0, 0.0});
-  joint.rotation = view.vec3_or("rotation", {0.0, 0.0, 0.0});
+  if (const Field* rotation = view.find("rotation")) {  // URDF's rpy, rad
+    const std::vector<double> rpy = view.numbers(*rotation, 3, "[roll, pitch, yaw]");
+    joint.rotation = {rpy[0], rpy[1], rpy[2]};
+  }
   const bool one_axis = joint.type == JointType::kRevolute || joint.type == JointType::kPrismatic;
   const Field* axis = view.find("axis");
   if (one_axis) {

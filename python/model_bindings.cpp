@@ -121,11 +121,19 @@ void bind_model(py::module_& module) {
               d["Jc"] = e.jc;
               d["gamma"] = e.gamma;
             }
+            if (e.has_loops) {  // as `mbfe eval --json`'s "loops"
+              py::dict loops;
+              loops["Phi"] = e.loop_phi;
+              loops["J"] = e.loop_j;
+              loops["gamma"] = e.loop_gamma;
+              d["loops"] = loops;
+            }
             return d;
           },
           py::arg("q"), py::arg("qd"), py::arg("t") = 0.0, py::arg("qc") = std::vector<double>{},
           py::arg("qcd") = std::vector<double>{},
-          "M, F, Q (and the constraints Phi, Jb, Jc, gamma) at a state, as numpy arrays")
+          "M, F, Q (and the contacts' Phi, Jb, Jc, gamma; a dict 'loops' of the closed loops' Phi, J, gamma) at a "
+          "state, as numpy arrays; q with unit quaternions (empty: zeros and identity quaternions)")
       .def("simulate", &simulate, py::arg("integrator") = "", py::arg("step") = py::none(),
            py::arg("t_end") = py::none(), py::arg("adjust") = py::none(),
            py::arg("probes") = std::vector<std::string>{}, py::arg("every") = py::none(),

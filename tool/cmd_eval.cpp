@@ -10,6 +10,7 @@
 #include "api/solver_cache.h"
 #include "frontend/parse_model.h"
 #include "ir/coordinate_layout.h"
+#include "runtime/multibody/quaternion_check.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "tool/model_warnings_notice.h"
@@ -40,7 +41,8 @@ Phi (m), J_b = dPhi/dq_b, J_c = dPhi/dq_c over all beam coordinates and
 gamma = -(dJ/dt) q' of J_b q_b'' + J_c q_c'' = gamma.
 
 A spatial model (dimension: 3) takes --q with its nq position coordinates
-(a quaternion as w, x, y, z; missing --q: zeros and identity quaternions)
+(a quaternion as w, x, y, z, of unit length within 1e-6; missing --q: zeros
+and identity quaternions)
 and --qd with its nv velocity coordinates; M is nv x nv. A model with closed
 loops (`constraints:`, planar or spatial) adds
   "loops": {"Phi": [...], "J": [[...]], "gamma": [...]}
@@ -88,6 +90,8 @@ int eval_generated_kernels(const ir::Model& model, const ParsedArgs& parsed, con
                        " coordinates in model order)");
     *values = Eigen::Map<const Eigen::VectorXd>(given.data(), n);
   }
+  if (const std::string wrong = runtime::non_unit_quaternion(model, q.data()); !wrong.empty())
+    throw UsageError("--q: " + wrong);
   const double t = parsed.number("t").value_or(0.0);
   const mbfe_model_v1& k = *load_solver(model, /*quiet=*/true).model;
   if (k.num_driven > 0) {  // the motion's q and q' at t, whatever the flags say

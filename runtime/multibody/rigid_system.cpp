@@ -30,6 +30,13 @@ std::string coordinate_name(const mbfe_model_v1& model, int i) {
   return "q" + std::to_string(i);
 }
 
+/// The name of velocity coordinate i, a row of M (a quaternion joint's are
+/// not its position coordinates: <body>_wx, not <body>_qw).
+std::string velocity_name(const mbfe_model_v1& model, int i) {
+  if (model.velocity_names != nullptr && model.velocity_names[i] != nullptr) return model.velocity_names[i];
+  return coordinate_name(model, i);  // nv = nq: the same names
+}
+
 }  // namespace
 
 std::vector<BodyInertia> body_inertias(const ir::Model& model) {
@@ -90,7 +97,7 @@ void throw_singular_mass_matrix(const mbfe_model_v1& model,
       }
     }
     for (int i = 0; i < n; ++i) {
-      if (in_null[i]) coords.push_back(coordinate_name(model, i));
+      if (in_null[i]) coords.push_back(velocity_name(model, i));
     }
     os << " (eigenvalues from " << lam(0) << " to " << lam(n - 1) << ")";
   } else {
@@ -103,7 +110,7 @@ void throw_singular_mass_matrix(const mbfe_model_v1& model,
   // exceeds double precision, or a kinematic singularity.
   std::vector<std::string> no_mass;
   for (int i = 0; i < n; ++i)
-    if (M.allFinite() && !(M(i, i) > 0.0)) no_mass.push_back(coordinate_name(model, i));
+    if (M.allFinite() && !(M(i, i) > 0.0)) no_mass.push_back(velocity_name(model, i));
   std::vector<std::string> massless;
   for (const BodyInertia& b : bodies) {
     if (b.mass == 0.0 && b.inertia == 0.0) massless.push_back(b.name);

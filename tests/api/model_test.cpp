@@ -11,6 +11,9 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "frontend/parse_model.h"
 #include "tests/support/cli.h"
@@ -181,6 +184,66 @@ TEST(ApiModel, RequestsTheModelCannotRunAreInvalidInput) {
   EXPECT_THROW(beam.evaluate(state), runtime::InvalidInput);  // no bodies
   state.q = {1.0, 2.0, 3.0};
   EXPECT_THROW(pendulum.evaluate(state), runtime::InvalidInput);
+}
+
+TEST(ApiModel, EvaluateGivesTheLoopsAsTheCommandLineDoes) {
+  const std::vector<double> q = {
+      0.3, 0.9899856611293864, 0.0, -0.12626445504008477, 0.06313222752004238, 0.48405728739343046};
+  const std::vector<double> qd = {10.0, 0.1, -0.2, 0.3, 0.5};
+  std::ostringstream args;
+  args.precision(17);
+  args << "eval " << MBFE_SOURCE_DIR << "/models/slider_crank_3d.yaml --json --q ";
+  for (std::size_t i = 0; i < q.size(); ++i) args << (i ? "," : "") << q[i];
+  args << " --qd ";
+  for (std::size_t i = 0; i < qd.size(); ++i) args << (i ? "," : "") << qd[i];
+  const test::CliRun r = test::run_cli(args.str());
+  ASSERT_EQ(r.status, 0) << r.all();
+  const nlohmann::json loops = nlohmann::json::parse(r.out).at("loops");
+  const Model model = Model::load(std::string(MBFE_SOURCE_DIR) + "/models/slider_crank_3d.yaml");
+  State state;
+  state.q = q;
+  state.qd = qd;
+  const Evaluation e = model.evaluate(state);
+  ASSERT_TRUE(e.has_loops);
+  const auto phi = loops.at("Phi").get<std::vector<double>>();
+  const auto j = loops.at("J").get<std::vector<std::vector<double>>>();
+  const auto gamma = loops.at("gamma").get<std::vector<double>>();
+  ASSERT_EQ(e.loop_phi.size(), static_cast<Eigen::Index>(phi.size()));
+  ASSERT_EQ(e.loop_j.rows(), static_cast<Eigen::Index>(j.size()));
+  ASSERT_EQ(e.loop_j.cols(), 5);
+  // The JSON prints the shortest text that reads back as the same double.
+  for (std::size_t i = 0; i < phi.size(); ++i) {
+    EXPECT_EQ(e.loop_phi[i], phi[i]) << i;
+    EXPECT_EQ(e.loop_gamma[i], gamma[i]) << i;
+    for (std::size_t c = 0; c < j[i].size(); ++c) EXPECT_EQ(e.loop_j(i, c), j[i][c]) << i << ", " << c;
+  }
+  EXPECT_FALSE(Model::parse(kPendulum, "pendulum.yaml").evaluate(State{}).has_loops);
+}
+
+TEST(ApiModel, EvaluateRefusesAQuaternionOffUnitLength) {
+  // A free body, 1 kg, Ixx 0.1, centre of mass 0.5 m along y: about the
+  // body's x axis M = Ixx + m 0.5^2 = 0.35 for a unit quaternion, whatever
+  // the turn. (1, 0, 0, 1) is no rotation; the kernels would read it as one.
+  const Model model = Model::parse(
+      "model: tumbler\ndimension: 3\nbodies:\n"
+      "  - {name: box, parent: ground, joint: {type: free}, mass: 1.0, inertia: [0.1, 0.2, 0.3, 0, 0, 0],"
+      " com: [0, 0.5, 0]}\n",
+      "tumbler.yaml");
+  State state;
+  state.q = {0, 0, 0, 1, 0, 0, 1};
+  try {
+    model.evaluate(state);
+    FAIL() << "a quaternion of norm sqrt(2) was evaluated";
+  } catch (const runtime::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("q: the quaternion of body 'box' (box_qw .. box_qz) has norm 1.414213562, "
+                                         "expected 1 (within 1e-06)"),
+              std::string::npos)
+        << e.what();
+  }
+  const double h = std::sqrt(0.5);
+  state.q = {0, 0, 0, h, 0, 0, h};
+  EXPECT_NEAR(model.evaluate(state).M(3, 3), 0.35, kKernelTol);
+  EXPECT_NEAR(model.evaluate(State{}).M(3, 3), 0.35, kKernelTol);  // empty q: the identity quaternion
 }
 
 // Every call builds the workspace it writes: two threads on one Model give

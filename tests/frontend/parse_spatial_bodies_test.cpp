@@ -168,6 +168,14 @@ TEST(ParseSpatialModel, RefusesImpossibleInertiaTensors) {
             "'0.1'");
 }
 
+TEST(ParseSpatialModel, NamesTheAnglesOfAJointRotation) {
+  EXPECT_EQ(
+      error_of(spatial("  - {name: a, parent: ground, joint: {type: revolute, axis: [0, 0, 1], rotation: [0.1, 0.2]}, "
+                       "mass: 1, inertia: [1, 1, 1, 0, 0, 0]}\n")),
+      "models/x.yaml:4:80: body 'a': joint.rotation: expected a list of 3 numbers [roll, pitch, yaw], got "
+      "'[0.1, 0.2]'");
+}
+
 TEST(ParseSpatialModel, RefusesBeamsContactsAndLinks) {
   EXPECT_EQ(error_of("model: m\ndimension: 3\nbeams:\n  - {name: b}\n"),
             "models/x.yaml:3:1: beams: a spatial model (dimension: 3) cannot have beams: 3D beams do not exist yet");

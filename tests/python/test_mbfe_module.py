@@ -157,6 +157,30 @@ class SameAsTheCommandLine(unittest.TestCase):
         for key in ("M", "F", "Q"):
             np.testing.assert_array_equal(got[key], np.array(expected[key]), err_msg=key)
 
+    def test_eval_of_a_loop_model_has_the_loops(self):
+        q = [0.3, 0.9899856611293864, 0.0, -0.12626445504008477, 0.06313222752004238, 0.48405728739343046]
+        qd = [10.0, 0.1, -0.2, 0.3, 0.5]
+        r = cli("eval", model("slider_crank_3d.yaml"), "--q", ",".join(repr(x) for x in q),
+                "--qd", ",".join(repr(x) for x in qd), "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        expected = json.loads(r.stdout)
+        got = mbfe.load(model("slider_crank_3d.yaml")).eval(q, qd)
+        for key in ("M", "F", "Q"):
+            np.testing.assert_array_equal(got[key], np.array(expected[key]), err_msg=key)
+        self.assertEqual(sorted(got["loops"].keys()), ["J", "Phi", "gamma"])
+        for key in ("Phi", "J", "gamma"):
+            np.testing.assert_array_equal(got["loops"][key], np.array(expected["loops"][key]), err_msg=key)
+
+    def test_eval_refuses_a_quaternion_off_unit_length(self):
+        # The rod's quaternion (1, 0, 0, 1): norm sqrt(2).
+        q = [0.3, 1.0, 0.0, 0.0, 1.0, 0.4]
+        r = cli("eval", model("slider_crank_3d.yaml"), "--q", ",".join(repr(x) for x in q), "--json")
+        self.assertEqual(r.returncode, 2, r.stdout)
+        self.assertIn("the quaternion of body 'rod' (rod_qw .. rod_qz) has norm 1.414213562", r.stderr)
+        with self.assertRaises(ValueError) as caught:
+            mbfe.load(model("slider_crank_3d.yaml")).eval(q, [0.0] * 5)
+        self.assertIn("the quaternion of body 'rod' (rod_qw .. rod_qz) has norm 1.414213562", str(caught.exception))
+
     def test_step_limits(self):
         r = cli("stability", model("bridge_moving_mass.yaml"), "--json")
         self.assertEqual(r.returncode, 0, r.stderr)

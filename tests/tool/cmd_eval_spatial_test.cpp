@@ -143,6 +143,20 @@ TEST(SpatialEval, CoordinateCountsAreCheckedAndNamed) {
   EXPECT_NE(text.out.find("velocity coordinates: crank rod_wx rod_wy rod_wz slider"), std::string::npos) << text.out;
 }
 
+TEST(SpatialEval, AQuaternionOffUnitLengthIsRefused) {
+  // The rod's quaternion (1, 0, 0, 1), norm sqrt(2): the kernels would read
+  // it as a rotation and give numbers that mean nothing.
+  const test::CliRun r = test::run_cli("eval models/slider_crank_3d.yaml --q 0.3,1,0,0,1,0.4 --json");
+  EXPECT_EQ(r.status, 2) << r.all();
+  EXPECT_NE(r.err.find("--q: the quaternion of body 'rod' (rod_qw .. rod_qz) has norm 1.414213562, expected 1 (within "
+                       "1e-06)"),
+            std::string::npos)
+      << r.err;
+  // Within the tolerance (a quaternion written with 8 digits) it is read.
+  const test::CliRun close = test::run_cli("eval models/slider_crank_3d.yaml --q 0.3,0.70710678,0,0,0.70710678,0.4");
+  EXPECT_EQ(close.status, 0) << close.all();
+}
+
 TEST(SpatialEval, SimulateRefusesASpatialModelWithBeams) {
   const test::TempDir dir;
   const std::string path = (dir / "beam3d.yaml").string();

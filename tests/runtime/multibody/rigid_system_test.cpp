@@ -147,6 +147,30 @@ TEST(RigidSystem, ASingularMassMatrixTellsNoMassFromIllConditioning) {
   EXPECT_NE(none.find("these coordinates move no mass: rear_wheel."), std::string::npos) << none;
 }
 
+const char* const kBallPositions[] = {"ball_qw", "ball_qx", "ball_qy", "ball_qz"};
+const char* const kBallVelocities[] = {"ball_wx", "ball_wy", "ball_wz"};
+
+TEST(RigidSystem, ASingularMassMatrixNamesVelocityCoordinates) {
+  // A ball joint: 4 position coordinates (its quaternion), 3 velocity
+  // coordinates (its angular velocity), and M is 3 x 3 over the latter.
+  mbfe_model_v1 model{};
+  model.abi_version = MBFE_MODEL_ABI_VERSION;
+  model.model_name = "ball";
+  model.num_coordinates = 4;
+  model.coordinate_names = kBallPositions;
+  model.num_velocities = 3;
+  model.velocity_names = kBallVelocities;
+  const std::vector<BodyInertia> bodies = {{"ball", 1.0, 0.0}};
+  std::string message;
+  try {
+    throw_singular_mass_matrix(model, bodies, Eigen::Vector3d(0.0, 0.2, 0.0).asDiagonal().toDenseMatrix(), 0.0);
+  } catch (const SingularMassMatrixError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("these coordinates move no mass: ball_wx, ball_wz."), std::string::npos) << message;
+  EXPECT_EQ(message.find("ball_q"), std::string::npos) << message;
+}
+
 TEST(RigidSystem, WrongSizesAreRejected) {
   const mbfe_model_v1 model = pendulum_model();
   EXPECT_THROW((RigidSystem(model, {{"a", 1, 1}, {"b", 1, 1}})), std::invalid_argument);

@@ -42,5 +42,33 @@ TEST(QuaternionStaticStart, TiltedBallPendulumHangsStraightDown) {
   for (const char* rate : {"bob_wx", "bob_wy", "bob_wz"}) EXPECT_EQ(rows.series(rate).front(), 0.0) << rate;
 }
 
+TEST(QuaternionStaticStart, AFreeBodyHasNoEquilibriumAndIsCalledAMechanism) {
+  // A free body (turned joint frame, centre of mass off its origin) carrying
+  // a ball-jointed body under gravity: it falls, whatever its position, so
+  // nothing holds its translations. Newton must say so at the start, not
+  // step by the inverse of round-off to where M means nothing.
+  const Model model = Model::parse(
+      "model: falling\ndimension: 3\ngravity: [0, 0, -9.81]\nbodies:\n"
+      "  - {name: b1, parent: ground, joint: {type: free, rotation: [0.3, 0.2, 0.1]}, mass: 3.0,"
+      " inertia: [0.1, 0.12, 0.08, 0, 0, 0], com: [0.1, 0.05, -0.2]}\n"
+      "  - {name: b2, parent: b1, joint: {type: spherical, at: [0, 0, -0.5]}, mass: 1.0,"
+      " inertia: [0.02, 0.02, 0.01, 0, 0, 0], com: [0, 0, -0.3]}\n"
+      "initial: {static: true}\n",
+      "falling.yaml");
+  runtime::SimulationRequest request;
+  request.integrator = runtime::parse_integrator("rk4");
+  request.step = 1e-3;
+  request.t_end = 0.01;
+  test::RecordedRows rows;
+  try {
+    model.simulate(request, rows);
+    FAIL() << "a falling body was found at rest";
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("mechanism: nothing holds 'b1_"), std::string::npos) << what;
+    EXPECT_EQ(what.find("singular"), std::string::npos) << what;
+  }
+}
+
 }  // namespace
 }  // namespace mbfe

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -62,6 +63,26 @@ TEST(SolveStatic, AMechanismIsNamed) {
     EXPECT_NE(what.find("mechanism"), std::string::npos) << what;
     EXPECT_NE(what.find("rank 2 of 3"), std::string::npos) << what;
     EXPECT_EQ(what.find("'held'"), std::string::npos) << what;
+  }
+}
+
+TEST(SolveStatic, AnUnknownTheResidualMissesButForRoundOffIsAMechanism) {
+  // A body falling freely: its acceleration is g wherever it is, but for a
+  // round-off that depends on its position (the factorisation of M does not
+  // give the same last bit everywhere). The difference column of x1 is
+  // that round-off alone: a mechanism, not a direction Newton may step along
+  // by the inverse of the noise.
+  const StaticResidualFn residual = [](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    r.resize(2);
+    const double g = -9.81;
+    r << x[0] - 1.0, g + 4.0 * std::numeric_limits<double>::epsilon() * std::abs(g) * std::sin(1e6 * x[1]);
+  };
+  try {
+    solve_static(residual, Eigen::Vector2d(0.0, 0.3), {"held", "height"});
+    FAIL() << "a free fall was solved";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("the structure is a mechanism: nothing holds 'height' in place"), std::string::npos) << what;
   }
 }
 
