@@ -6,8 +6,6 @@
 #include <vector>
 
 #include "api/mbfe.h"
-#include "runtime/simulation/assembled_model.h"
-#include "api/solver_cache.h"
 #include "frontend/parse_model.h"
 #include "ir/coordinate_layout.h"
 #include "runtime/multibody/quaternion_check.h"
@@ -70,68 +68,6 @@ nlohmann::json rows_of(const Eigen::MatrixXd& m) {
 
 std::vector<double> list_of(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
-/// A spatial model or one with closed loops, which the runtime does not take
-/// yet: its generated kernels called directly.
-int eval_generated_kernels(const ir::Model& model, const ParsedArgs& parsed, const std::vector<std::string>& warnings) {
-  const ir::CoordinateLayout layout = ir::coordinate_layout(model);
-  const int nq = layout.num_positions, nv = layout.num_velocities;
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(nq), v = Eigen::VectorXd::Zero(nv);
-  for (std::size_t b = 0; b < model.bodies.size(); ++b) {  // identity quaternions
-    const ir::JointType type = model.bodies[b].joint.type;
-    if (type == ir::JointType::kSpherical) q[layout.first_position[b]] = 1.0;
-    if (type == ir::JointType::kFree) q[layout.first_position[b] + 3] = 1.0;
-  }
-  for (auto [flag, values, n] : {std::tuple<const char*, Eigen::VectorXd*, int>{"q", &q, nq}, {"qd", &v, nv}}) {
-    const std::vector<double> given = parsed.numbers(flag).value_or(std::vector<double>{});
-    if (given.empty()) continue;
-    if (static_cast<int>(given.size()) != n)
-      throw UsageError(std::string("--") + flag + " has " + std::to_string(given.size()) + " entries, expected " +
-                       std::to_string(n) + (flag == std::string("q") ? " (position" : " (velocity") +
-                       " coordinates in model order)");
-    *values = Eigen::Map<const Eigen::VectorXd>(given.data(), n);
-  }
-  if (const std::string wrong = runtime::non_unit_quaternion(model, q.data()); !wrong.empty())
-    throw UsageError("--q: " + wrong);
-  const double t = parsed.number("t").value_or(0.0);
-  const mbfe_model_v1& k = *load_solver(model, /*quiet=*/true).model;
-  if (k.num_driven > 0) {  // the motion's q and q' at t, whatever the flags say
-    std::vector<double> dq(k.num_driven), dqd(k.num_driven), dqdd(k.num_driven);
-    k.motion(t, dq.data(), dqd.data(), dqdd.data());
-    for (int d = 0; d < k.num_driven; ++d) {
-      q[k.driven_positions ? k.driven_positions[d] : k.driven_coordinates[d]] = dq[d];
-      v[k.driven_coordinates[d]] = dqd[d];
-    }
-  }
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> M(nv, nv);
-  Eigen::VectorXd F(nv), Q(nv);
-  k.dynamics(q.data(), v.data(), t, M.data(), F.data(), Q.data());
-  nlohmann::json out;
-  out["M"] = rows_of(M);
-  out["F"] = list_of(F);
-  out["Q"] = list_of(Q);
-  if (k.num_loop_rows > 0) {
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(k.num_loop_rows, nv);
-    Eigen::VectorXd phi(k.num_loop_rows), gamma(k.num_loop_rows);
-    k.loop_constraints(q.data(), phi.data());
-    k.loop_jacobian(q.data(), J.data());
-    k.loop_gamma(q.data(), v.data(), gamma.data());
-    out["loops"] = {{"Phi", list_of(phi)}, {"J", rows_of(J)}, {"gamma", list_of(gamma)}};
-  }
-  out["warnings"] = warnings_json(warnings);
-  if (parsed.has("json")) {
-    std::cout << out.dump() << "\n";
-    return 0;
-  }
-  std::cout << "position coordinates:";
-  for (const std::string& name : layout.position_names) std::cout << " " << name;
-  std::cout << "\nvelocity coordinates:";
-  for (const std::string& name : layout.velocity_names) std::cout << " " << name;
-  std::cout << "\nM = " << out["M"].dump() << "\nF = " << out["F"].dump() << "\nQ = " << out["Q"].dump() << "\n";
-  if (out.contains("loops"))
-    for (const char* key : {"Phi", "J", "gamma"}) std::cout << key << " = " << out["loops"][key].dump() << "\n";
-  return 0;
-}
-
 }  // namespace
 
 int cmd_eval(const Args& args) {
@@ -145,23 +81,34 @@ int cmd_eval(const Args& args) {
   {
     const ir::Model ir = frontend::load_model_file(parsed.positional()[0], {}, model_overrides(parsed));
     warnings = announce_model_warnings(ir);
-    if (ir.dimension == 3 || !ir.constraints.empty()) return eval_generated_kernels(ir, parsed, warnings);
   }
   LoadOptions load;
   load.quiet = parsed.has("quiet") || parsed.has("json");
   load.overrides = model_overrides(parsed);
   const Model model = Model::load(parsed.positional()[0], load);
+  // A planar tree names its coordinates by body; a spatial model or one with
+  // closed loops has position and velocity coordinates of its own.
+  const bool by_body = model.ir().dimension == 2 && model.ir().constraints.empty();
+  const ir::CoordinateLayout layout = ir::coordinate_layout(model.ir());
   State state;
   state.q = parsed.numbers("q").value_or(std::vector<double>{});
   state.qd = parsed.numbers("qd").value_or(std::vector<double>{});
   state.qc = parsed.numbers("qc").value_or(std::vector<double>{});
   state.qcd = parsed.numbers("qcd").value_or(std::vector<double>{});
   state.t = parsed.number("t").value_or(0.0);
-  const std::size_t nb = model.ir().bodies.size();
-  for (const auto& [flag, values] : {std::pair<const char*, const std::vector<double>&>{"q", state.q}, {"qd", state.qd}})
-    if (!values.empty() && values.size() != nb)
-      throw UsageError(std::string("--") + flag + " has " + std::to_string(values.size()) + " entries, expected " +
-                       std::to_string(nb) + " (one per body, in model order)");
+  for (const auto& [flag, values, n] :
+       {std::tuple<const char*, const std::vector<double>&, int>{"q", state.q, layout.num_positions},
+        {"qd", state.qd, layout.num_velocities}}) {
+    if (values.empty() || static_cast<int>(values.size()) == n) continue;
+    const std::string what = by_body ? " (one per body, in model order)"
+                                     : std::string(flag == std::string("q") ? " (position" : " (velocity") +
+                                           " coordinates in model order)";
+    throw UsageError(std::string("--") + flag + " has " + std::to_string(values.size()) + " entries, expected " +
+                     std::to_string(n) + what);
+  }
+  if (!state.q.empty())
+    if (const std::string wrong = runtime::non_unit_quaternion(model.ir(), state.q.data()); !wrong.empty())
+      throw UsageError("--q: " + wrong);
   Evaluation e;
   try {
     e = model.evaluate(state);
@@ -182,18 +129,28 @@ int cmd_eval(const Args& args) {
     c["gamma"] = list_of(e.gamma);
     out["constraints"] = c;
   }
+  if (e.has_loops) out["loops"] = {{"Phi", list_of(e.loop_phi)}, {"J", rows_of(e.loop_j)}, {"gamma", list_of(e.loop_gamma)}};
   out["warnings"] = warnings_json(warnings);
   if (parsed.has("json")) {
     std::cout << json_text(out) << "\n";
-  } else {
+    return 0;
+  }
+  if (by_body) {
     std::cout << "coordinates:";
     for (const auto& b : model.ir().bodies) std::cout << " " << b.name;
-    std::cout << "\nM = " << json_text(out["M"]) << "\nF = " << json_text(out["F"]) << "\nQ = " << json_text(out["Q"])
-              << "\n";
-    if (out.contains("constraints"))
-      for (const char* key : {"Phi", "Jb", "Jc", "gamma"})
-        std::cout << key << " = " << json_text(out["constraints"][key]) << "\n";
+  } else {
+    std::cout << "position coordinates:";
+    for (const std::string& name : layout.position_names) std::cout << " " << name;
+    std::cout << "\nvelocity coordinates:";
+    for (const std::string& name : layout.velocity_names) std::cout << " " << name;
   }
+  std::cout << "\nM = " << json_text(out["M"]) << "\nF = " << json_text(out["F"]) << "\nQ = " << json_text(out["Q"])
+            << "\n";
+  if (out.contains("constraints"))
+    for (const char* key : {"Phi", "Jb", "Jc", "gamma"})
+      std::cout << key << " = " << json_text(out["constraints"][key]) << "\n";
+  if (out.contains("loops"))
+    for (const char* key : {"Phi", "J", "gamma"}) std::cout << key << " = " << json_text(out["loops"][key]) << "\n";
   return 0;
 }
 
