@@ -13,6 +13,10 @@
 // run it was written by (a rebuilt mbfe that changes the original model's
 // numerics needs a fresh folder).
 //
+// One file of about 600 lines: a program of its own (the study file, the runs,
+// their cache, the tables) that nothing else links; its parts share the
+// study's records and would only pass them around if split.
+//
 // STUDIES.yaml (bench/adjustment_error_studies.yaml says every key) lists
 // studies: a model with its beams' element counts and adjustment settings,
 // the reference's refinements, and the runs (policy, omega_limit, integrator,
