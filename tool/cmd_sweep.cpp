@@ -227,13 +227,21 @@ int cmd_sweep(const Args& args) {
   // must not be one of the sweep's own files (the sweep file, the model, the
   // files the model reads), and none of them may lie in the folders mbfe fills.
   std::vector<std::string> inputs{sweep_file, model_path};
-  try {
-    // The files the model reads, as its first point has it (the model file
-    // alone may hold values only the points make valid).
-    const ir::Model first = frontend::parse_model_text(frontend::point_model_text(sweep, model_text, 0), model_path);
-    for (std::string& file : ir::data_files(first)) inputs.push_back(std::move(file));
-  } catch (const ir::ModelError&) {
-    // A point's own run reports what is wrong with its model.
+  // The files the models read, as the points have them (the model file alone
+  // may hold values only the points make valid): the first point's, and every
+  // point's when the sweep varies a running-surface profile (which may name a
+  // table file per point).
+  const bool varies_files = std::any_of(sweep.vary.begin(), sweep.vary.end(), [](const ir::SweepVariable& v) {
+    return v.path.find("profile") != std::string::npos;
+  });
+  for (long i = 0; i < (varies_files ? n : std::min(n, 1L)); ++i) {
+    try {
+      const ir::Model point = frontend::parse_model_text(frontend::point_model_text(sweep, model_text, i), model_path);
+      for (std::string& file : ir::data_files(point))
+        if (std::find(inputs.begin(), inputs.end(), file) == inputs.end()) inputs.push_back(std::move(file));
+    } catch (const ir::ModelError&) {
+      // A point's own run reports what is wrong with its model.
+    }
   }
   check_output_folder(*out, "--out", inputs);
   for (const char* name : {"summary.csv", "summary.json"})

@@ -103,6 +103,20 @@ TEST_F(ModelInputs, NoSweepOutputLandsOnAProfileTable) {
   }
 }
 
+TEST_F(ModelInputs, NoSweepOutputLandsOnATableOnlyALaterPointReads) {
+  // The points vary the deck's profile table: the first reads rail.csv, the
+  // second the folder's summary.csv, which the sweep would overwrite.
+  model_reading("rail.csv");
+  const fs::path out = tmp_ / "out";
+  fs::create_directories(out);
+  spit(out / "summary.csv", kTable);
+  const fs::path sweep = tmp_ / "sweep.yaml";
+  spit(sweep, "sweep: s\nmodel: bridge.yaml\nvary:\n  - {path: beams.deck.profile.file, values: [rail.csv, "
+              "out/summary.csv]}\nsimulate: {t_end: 0.01}\n");
+  const RunResult r = mbfe("sweep " + quote(sweep.string()) + " --out " + quote(out.string()));
+  expect_refused(r, "--out " + (out / "summary.csv").string() + ": that is the input", out / "summary.csv");
+}
+
 TEST_F(ModelInputs, AProfileTableIsReadWithinItsLimit) {
   // A sparse file of 1 GiB (no disk space) was read for more than 50 s up to
   // 2.5 GB of memory; under a memory limit one of 3 GiB said "the file is
