@@ -18,6 +18,35 @@ namespace {
 // (double precision with a margin of ~1e3 ulps for the small dense solves).
 constexpr double kSingularRcond = 1e-13;
 
+// x = A^-1 b from A's full-pivoting factors, A = P^-1 L U Q^-1, through `tmp`:
+// the arithmetic of FullPivLU::solve for a regular A, without its temporary.
+void solve_with(const Eigen::FullPivLU<Eigen::MatrixXd>& lu, const Eigen::VectorXd& b, Eigen::VectorXd& tmp,
+                Eigen::VectorXd& x) {
+  tmp.noalias() = lu.permutationP() * b;
+  lu.matrixLU().triangularView<Eigen::UnitLower>().solveInPlace(tmp);
+  lu.matrixLU().triangularView<Eigen::Upper>().solveInPlace(tmp);
+  x.noalias() = lu.permutationQ() * tmp;
+}
+
+// A lower bound of A's reciprocal 2-norm condition number, 1 / (||A||_F
+// ||A^-1||_F), at least `floor`: A^-1 column by column from the factors
+// (||Q y|| = ||y||), no allocation once `tmp` has A's size. False for a
+// matrix near singular (or exactly: a zero pivot gives inf), which the
+// caller then judges by Eigen's estimate.
+bool clearly_regular(const Eigen::FullPivLU<Eigen::MatrixXd>& lu, double norm, double floor, Eigen::VectorXd& tmp) {
+  const Eigen::Index n = lu.rows();
+  if (n == 0) return true;
+  double sum = 0.0;
+  for (Eigen::Index c = 0; c < n; ++c) {
+    tmp.setZero(n);
+    tmp[lu.permutationP().indices()[c]] = 1.0;  // P e_c
+    lu.matrixLU().triangularView<Eigen::UnitLower>().solveInPlace(tmp);
+    lu.matrixLU().triangularView<Eigen::Upper>().solveInPlace(tmp);
+    sum += tmp.squaredNorm();
+  }
+  return 1.0 / (norm * std::sqrt(sum)) >= floor;
+}
+
 }  // namespace
 
 CoupledData::CoupledData(const CoupledModel& model) {
@@ -223,11 +252,9 @@ void CoupledDynamics::solve_augmented(double t, Eigen::VectorXd& qdd, Eigen::Vec
   d.a_rhs.head(nb) = d.rb;
   d.a_rhs.tail(m) = d.cv.gamma - d.gc;
   d.a_lu.compute(d.a_matrix);
-  if (!(d.a_lu.rcond_lower_cheap() >= kSingularRcond || d.a_lu.rcond_lower() >= kSingularRcond)) {
-    // As in solve_partitioned: the lower bounds screen, and when both fail
-    // Eigen's full-pivoting LU and its 1-norm condition estimate decide.
-    const Eigen::FullPivLU<Eigen::MatrixXd> full(d.a_matrix);
-    const double rc = full.rcond();
+  if (!clearly_regular(d.a_lu, d.a_matrix.norm(), kSingularRcond, d.a_tmp)) {
+    // Near singular by the lower bound: Eigen's 1-norm estimate decides.
+    const double rc = d.a_lu.rcond();
     if (!(rc >= kSingularRcond)) {
       if (m > 0 && sigma_min(d.cv.jb * d.cv.jb.transpose()) < kSingularRcond * std::pow(constraint_scale(d.cv), 2)) {
         throw_singular_constraints(model_->constraints(), d.cv.jb, t, rc, "saddle-point matrix");
@@ -235,7 +262,7 @@ void CoupledDynamics::solve_augmented(double t, Eigen::VectorXd& qdd, Eigen::Vec
       throw_singular_mass_matrix(model_->kernels(), model_->bodies(), d.mb, t);
     }
   }
-  d.a_lu.solve(d.a_rhs, d.a_x);
+  solve_with(d.a_lu, d.a_rhs, d.a_tmp, d.a_x);
   qdd.resize(nb + nc);
   qdd.head(nb) = d.a_x.head(nb);
   lambda = d.a_x.tail(m);

@@ -12,10 +12,11 @@
 // pin allocates as it reaches new elements. solve_augmented (the augmented
 // formulation; the implicit system's and the tangents' accelerations) forms
 // its saddle-point matrix and LU in the data too; only a matrix near singular,
-// which Eigen's full-pivoting LU then judges, allocates.
+// whose condition Eigen's estimate then judges, allocates.
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <functional>
 #include <memory>
 #include <string>
@@ -77,10 +78,11 @@ struct CoupledData {
   Eigen::MatrixXd w, h;
   Eigen::VectorXd gc;
   std::vector<std::vector<Eigen::VectorXd>> minv_col;
-  // solve_augmented: the saddle-point matrix, its right-hand side and solution.
+  // solve_augmented: the saddle-point matrix, its full-pivoting LU, the
+  // right-hand side, the solution and a column of scratch.
   Eigen::MatrixXd a_matrix;
-  Eigen::VectorXd a_rhs, a_x;
-  SmallLu a_lu;
+  Eigen::FullPivLU<Eigen::MatrixXd> a_lu;
+  Eigen::VectorXd a_rhs, a_x, a_tmp;
   // solve_partitioned.
   Eigen::MatrixXd p_jv, p_ju, p_xju, p_xh, p_dir, p_a;
   Eigen::VectorXd p_d, p_rhs, p_base, p_b, p_x, p_mu;
