@@ -172,8 +172,8 @@ TEST(ParseSpatialModel, NamesTheAnglesOfAJointRotation) {
   EXPECT_EQ(
       error_of(spatial("  - {name: a, parent: ground, joint: {type: revolute, axis: [0, 0, 1], rotation: [0.1, 0.2]}, "
                        "mass: 1, inertia: [1, 1, 1, 0, 0, 0]}\n")),
-      "models/x.yaml:4:80: body 'a': joint.rotation: expected a list of 3 numbers [roll, pitch, yaw], got "
-      "'[0.1, 0.2]'");
+      "models/x.yaml:4:82: body 'a': joint.rotation: expected a list of 3 numbers [roll, pitch, yaw], got a list "
+      "of 2 items");
 }
 
 TEST(ParseSpatialModel, RefusesBeamsContactsAndLinks) {
