@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cmath>
 #include <string>
@@ -261,8 +262,8 @@ TEST(RigidCoordinates, NormalizingScalesEachQuaternionToUnitLengthAndNothingElse
 TEST(RigidCoordinates, NormErrorIsTheLargestOverTheQuaternions) {
   const RigidCoordinates c = rigid_coordinates(every_joint());
   std::vector<double> q = every_joint_state();
-  for (int k = 0; k < 4; ++k) q[kFloatQ + k] *= 0.9;  // | |q| - 1 | = 0.1
-  for (int k = 0; k < 4; ++k) q[kBallQ + k] *= 1.02;  // 0.02
+  for (int k = 0; k < 4; ++k) q[kBallQ + k] *= 0.9;    // | |q| - 1 | = 0.1
+  for (int k = 0; k < 4; ++k) q[kFloatQ + k] *= 1.02;  // 0.02
   EXPECT_NEAR(quaternion_norm_error(c, q.data()), 0.1, kRoundOff);
 }
 
