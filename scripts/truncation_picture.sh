@@ -2,8 +2,8 @@
 # Draws docs/images/catenary_truncation.png: CPU time of a whole run against
 # the largest error of the EN 50318 contact-force statistics, for the ways of
 # running the catenary (docs/catenary.md, "Modal truncation"), at 300 km/h
-# (top: a loaded host, 2026-11-24) and 250 km/h (bottom: first runs at the
-# lowest priority on a busier host, 2026-11-28; the rows do not compare). The
+# (top: a loaded host, 2026-11-24) and 250 km/h (bottom: second runs on a
+# quiet host, 2026-11-28; the rows do not compare). The
 # figures are those measured for that section (docs/performance.md,
 # "Modal truncation of the catenary" gives the commands); they are written
 # here, not recomputed.
@@ -16,7 +16,7 @@ data=$(mktemp)
 trap 'rm -f "$data"' EXIT
 # method (0 adjusted, 1 truncated, 2 original, 3 policy mass at 4000 rad/s, RK4 5e-4 s), worst error (% of the mean force),
 # CPU (s, user + system; the mean of the runs (three on the ten-span, two on the two-span), but on the ten-span 100 Hz: its one run, slicing its
-# modes, and 200 Hz: its second run, the first having sliced them; at 250 km/h the one run of each), label
+# modes, and 200 Hz: its second run, the first having sliced them; at 250 km/h the mean of two second runs), label
 cat > "$data" <<'DATA'
 # two-span: adjusted (cap 1500 rad/s, RK4 1e-3 s)
 0 0.293 2.72 "cap"
@@ -38,24 +38,26 @@ cat > "$data" <<'DATA'
 
 
 # two-span, 250 km/h: adjusted (cap 1500 rad/s, RK4 1e-3 s)
-0 0.296 0.97 "cap"
+0 0.296 0.71 "cap"
 # truncated, RK4 1e-3 s, omega_T 942 1257 1500 rad/s
-1 0.481 0.83 "150 Hz"
-1 0.264 0.91 ""
-1 0.181 0.95 "239, 200 Hz"
-# original, generalized-alpha 2e-4 and 1e-4 s
-2 0.024 5.10 "2e-4 s"
-2 0.005 4.30 "1e-4 s"
-3 0.036 3.88 "mass 4000"
+1 0.481 0.22 "150 Hz"
+1 0.264 0.24 ""
+1 0.181 0.26 "239, 200 Hz"
+# original, generalized-alpha 2e-4 and 1e-4 s; policy mass at 4000 rad/s, RK4 5e-4 s
+2 0.024 2.62 "2e-4 s"
+2 0.005 4.05 "1e-4 s"
+3 0.036 2.54 "mass 4000"
 
 
 # ten-span, 250 km/h
-0 0.261 44.9 "cap"
-1 0.770 37.5 "150 Hz"
-1 0.177 29.8 "200 Hz"
-1 0.211 24.3 "239 Hz"
-2 0.022 88.0 "2e-4 s"
-3 0.018 114.9 "mass 4000"
+0 0.261 19.8 "cap"
+1 4.191 5.9 "100 Hz"
+1 0.770 7.1 "150 Hz"
+1 0.177 9.0 ""
+1 0.211 10.0 "239, 200 Hz"
+2 0.022 64.3 "2e-4 s"
+2 0.006 104.5 "1e-4 s"
+3 0.018 51.1 "mass 4000"
 DATA
 gnuplot <<GP
 set terminal pngcairo size 1100,900 font "sans,10"
@@ -79,7 +81,7 @@ plot "$data" index 1 using 2:(\$1==0?\$3:1/0) with points pt 7 ps 1.5 lc rgb "#1
      "" index 1 using 2:(\$1==1?\$3:1/0) with points pt 5 ps 1.2 lc rgb "#d62728" title "truncated, RK4", \
      "" index 1 using 2:(\$1==1?\$3:1/0):4 with labels offset 0,1 font ",9" notitle
 do for [panel=2:3] {
-  set title (panel == 2 ? "two-span catenary, 250 km/h (1.67 s simulated; loaded, first runs)" : "ten-span catenary, 250 km/h (8.58 s simulated; loaded, first runs)")
+  set title (panel == 2 ? "two-span catenary, 250 km/h (1.67 s simulated; quiet host, second runs)" : "ten-span catenary, 250 km/h (8.58 s simulated; quiet host, second runs)")
   set yrange [0:*]
   plot "$data" index panel using 2:(\$1==0?\$3:1/0) with points pt 7 ps 1.5 lc rgb "#1f77b4" title "adjusted (cap), RK4", \
        "" index panel using 2:(\$1==1?\$3:1/0) with linespoints pt 5 ps 1.2 lc rgb "#d62728" title "truncated, RK4", \
