@@ -81,27 +81,17 @@ class Runner {
       for (int i = 0; i < blk.phi->rows(); ++i)
         block_of_dof_[static_cast<std::size_t>(blk.dof_offset + i)] = static_cast<int>(b);
     }
-    // The DOFs the fixed elements touch, their rows of the modes, and each
-    // element's weights over them.
-    for (const FixedElement& e : s.fixed)
-      for (const auto& [dof, w] : e.dofs) sdofs_.push_back(check_dof(dof));
-    std::sort(sdofs_.begin(), sdofs_.end());
-    sdofs_.erase(std::unique(sdofs_.begin(), sdofs_.end()), sdofs_.end());
-    const int ns_rows = static_cast<int>(sdofs_.size());
-    phi_s_.setZero(ns_rows, ns_);
-    for (int i = 0; i < ns_rows; ++i) {
-      const int dof = sdofs_[static_cast<std::size_t>(i)];
-      const auto& blk = s.blocks[static_cast<std::size_t>(block_of_dof_[static_cast<std::size_t>(dof)])];
-      phi_s_.block(i, blk.mode_offset, 1, blk.phi->cols()) = blk.phi->row(dof - blk.dof_offset);
-    }
-    gf_.setZero(ns_rows, nf_);
+    // Each fixed element's modal weights, Phi^T g_e over every mode: the
+    // rows of the modes at the DOFs it touches, weighted, computed once so
+    // a step passes over the modes once per element, not once per DOF.
+    hf_.setZero(nf_, ns_);
     off_f_.resize(nf_);
     for (int f = 0; f < nf_; ++f) {
       const FixedElement& e = s.fixed[static_cast<std::size_t>(f)];
       off_f_[f] = e.offset;
       for (const auto& [dof, w] : e.dofs) {
-        const int i = static_cast<int>(std::lower_bound(sdofs_.begin(), sdofs_.end(), dof) - sdofs_.begin());
-        gf_(i, f) += w;
+        const auto& blk = s.blocks[static_cast<std::size_t>(block_of_dof_[static_cast<std::size_t>(check_dof(dof))])];
+        hf_.block(f, blk.mode_offset, 1, blk.phi->cols()) += w * blk.phi->row(dof - blk.dof_offset);
       }
     }
     // The constant modal load Phi^T P.
@@ -144,6 +134,10 @@ class Runner {
     const double a4 = 4.0 / (h * h), a5 = 4.0 / h;
     set_inverse(/*statics=*/false);
     const Eigen::MatrixXd B = s_.stiffness + gain_ * s_.damping + a4 * s_.mass;
+    if (nr_ > 0) b_lu_.compute(B);
+    if (nr_ > 0 && !b_lu_.isInvertible())
+      throw std::runtime_error("the linearised step is singular: the bodies' M, C, K give no regular step matrix");
+    f_slopes_.resize(0);
     Eigen::VectorXd fs(ns_), rq(ns_), ry(nr_), eta_p(ns_), force_on_modes(ns_);
     for (int k = 1; k <= x_.steps; ++k) {
       modal_load(k, fs);
@@ -211,9 +205,7 @@ class Runner {
       const double dj = statics ? d_.k[j] : d_.k[j] + gain_ * c_[j] + gain_ * gain_ * m_[j];  // k + 2c/h + 4m/h^2
       inv_d_[j] = kind == ModalDynamicsSet::kAbsent ? 0.0 : 1.0 / dj;
     }
-    const Eigen::MatrixXd weighted = phi_s_ * inv_d_.asDiagonal();
-    h_ss_ = weighted * phi_s_.transpose();
-    g_ff_ = gf_.transpose() * h_ss_ * gf_;
+    g_ff_ = hf_ * inv_d_.asDiagonal() * hf_.transpose();
   }
 
   void modal_load(int k, Eigen::VectorXd& fs) const {
@@ -296,7 +288,7 @@ class Runner {
     // Predicted elongations (no element force, the bodies where y = 0) and
     // the couplings G (x = x_p - G z + E^T y).
     Eigen::VectorXd xp(nz);
-    xp.head(nf_) = off_f_ + gf_.transpose() * (phi_s_ * eta_p);
+    xp.head(nf_) = off_f_ + hf_ * eta_p;
     Eigen::MatrixXd G(nz, nz), E = Eigen::MatrixXd::Zero(nr_, nz);
     G.topLeftCorner(nf_, nf_) = g_ff_;
     for (int a = 0; a < na; ++a) {
@@ -306,8 +298,7 @@ class Runner {
       xp[nf_ + a] = c.offset + c.p.dot(eta_p.segment(blk.mode_offset, c.p.size()));
       const Eigen::VectorXd weighted = inv.cwiseProduct(c.p);
       if (nf_ > 0) {
-        const Eigen::VectorXd hs = phi_s_.middleCols(blk.mode_offset, c.p.size()) * weighted;
-        const Eigen::VectorXd gcf = gf_.transpose() * hs;
+        const Eigen::VectorXd gcf = hf_.middleCols(blk.mode_offset, c.p.size()) * weighted;
         G.block(nf_ + a, 0, 1, nf_) = gcf.transpose();
         G.block(0, nf_ + a, nf_, 1) = gcf;
       }
@@ -337,43 +328,15 @@ class Runner {
         laws[static_cast<std::size_t>(e)] = evaluate_law(law, x[e], rate, rate_gain);
       }
     };
-    Eigen::MatrixXd J(n, n);
     Eigen::VectorXd residual(n);
     Eigen::VectorXd x = xp - G * z + E.transpose() * y;
     evaluate(x);
     bool settled = false;
     for (int it = 0; it < kMaxNewton && !settled; ++it) {
-      // J = [[B, E], [-L' E^T, I + L' G]], residual [B y + E z - ry; z - L(x)].
-      J.setZero();
-      J.topLeftCorner(nr_, nr_) = B;
-      J.topRightCorner(nr_, nz) = E;
-      J.bottomRightCorner(nz, nz).setIdentity();
       residual.head(nr_) = B * y + E * z - ry;
-      for (int e = 0; e < nz; ++e) {
-        const LawValue& l = laws[static_cast<std::size_t>(e)];
-        residual[nr_ + e] = z[e] - l.force;
-        if (l.slope == 0.0) continue;
-        J.block(nr_ + e, 0, 1, nr_) = -l.slope * E.col(e).transpose();
-        J.block(nr_ + e, nr_, 1, nz) += l.slope * G.row(e);
-      }
-      // Rows and columns equilibrated: forces, stiffnesses and compliances
-      // differ by twenty orders of magnitude between them.
-      Eigen::VectorXd row_scale(n), col_scale(n);
-      for (int i = 0; i < n; ++i) {
-        const double largest = J.row(i).cwiseAbs().maxCoeff();
-        row_scale[i] = largest > 0.0 ? 1.0 / largest : 1.0;
-      }
-      J = row_scale.asDiagonal() * J;
-      for (int i = 0; i < n; ++i) {
-        const double largest = J.col(i).cwiseAbs().maxCoeff();
-        col_scale[i] = largest > 0.0 ? 1.0 / largest : 1.0;
-      }
-      J = J * col_scale.asDiagonal();
-      Eigen::PartialPivLU<Eigen::MatrixXd> lu(J);
-      if (!(lu.matrixLU().diagonal().cwiseAbs().minCoeff() > kSingularPivot))
-        throw std::runtime_error(std::string("the linearised ") + (statics ? "static equilibrium" : "step") +
-                                 " is singular: a body is held by nothing (no contact pressing, no spring)");
-      const Eigen::VectorXd delta = col_scale.cwiseProduct(lu.solve(-row_scale.cwiseProduct(residual)));
+      for (int e = 0; e < nz; ++e) residual[nr_ + e] = z[e] - laws[static_cast<std::size_t>(e)].force;
+      const Eigen::VectorXd delta =
+          statics ? newton_update_equilibrated(B, E, G, laws, residual) : newton_update_by_blocks(E, G, laws, residual);
       y += delta.head(nr_);
       z += delta.tail(nz);
       x = xp - G * z + E.transpose() * y;
@@ -402,9 +365,104 @@ class Runner {
     return settled;
   }
 
+  /// The Newton update of a step's system
+  ///   J = [[B, E], [-L' E^T, I + L' G]],  J delta = -residual,
+  /// by one LU of J with its rows and columns equilibrated: forces,
+  /// stiffnesses and compliances differ by twenty orders of magnitude
+  /// between them. It serves the statics, where B = K_r may be singular (a
+  /// body held by its contacts alone) and only the whole system is regular.
+  Eigen::VectorXd newton_update_equilibrated(const Eigen::MatrixXd& B, const Eigen::MatrixXd& E,
+                                             const Eigen::MatrixXd& G, const std::vector<LawValue>& laws,
+                                             const Eigen::VectorXd& residual) const {
+    const int nz = static_cast<int>(G.rows()), n = nr_ + nz;
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n);
+    J.topLeftCorner(nr_, nr_) = B;
+    J.topRightCorner(nr_, nz) = E;
+    J.bottomRightCorner(nz, nz).setIdentity();
+    for (int e = 0; e < nz; ++e) {
+      const double slope = laws[static_cast<std::size_t>(e)].slope;
+      if (slope == 0.0) continue;
+      J.block(nr_ + e, 0, 1, nr_) = -slope * E.col(e).transpose();
+      J.block(nr_ + e, nr_, 1, nz) += slope * G.row(e);
+    }
+    Eigen::VectorXd row_scale(n), col_scale(n);
+    for (int i = 0; i < n; ++i) {
+      const double largest = J.row(i).cwiseAbs().maxCoeff();
+      row_scale[i] = largest > 0.0 ? 1.0 / largest : 1.0;
+    }
+    J = row_scale.asDiagonal() * J;
+    for (int i = 0; i < n; ++i) {
+      const double largest = J.col(i).cwiseAbs().maxCoeff();
+      col_scale[i] = largest > 0.0 ? 1.0 / largest : 1.0;
+    }
+    J = J * col_scale.asDiagonal();
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu(J);
+    if (!(lu.matrixLU().diagonal().cwiseAbs().minCoeff() > kSingularPivot))
+      throw std::runtime_error(
+          "the linearised static equilibrium is singular: a body is held by nothing (no contact pressing, no spring)");
+    return col_scale.cwiseProduct(lu.solve(-row_scale.cwiseProduct(residual)));
+  }
+
+  /// The same update in a step, where B = K_r + 2 C_r / h + 4 M_r / h^2 is
+  /// regular and constant, by blocks: the bodies and the fixed elements do
+  /// not couple directly (a fixed element acts on beams alone, E_f = 0), so
+  ///   A = [[B, 0], [0, F]],  F = I + L_f' G_ff,
+  /// and the moving contacts (a few) join through the Schur complement
+  ///   S = I + L_c' G_cc - D A^-1 C.
+  /// B is factored once a run and F only when a fixed element changes state
+  /// (a dropper going slack), so a step no longer factors the whole system:
+  /// it was a quarter of the linearised run's time on a catenary.
+  Eigen::VectorXd newton_update_by_blocks(const Eigen::MatrixXd& E, const Eigen::MatrixXd& G,
+                                          const std::vector<LawValue>& laws, const Eigen::VectorXd& residual) {
+    const int nz = static_cast<int>(G.rows()), na = nz - nf_, nu = nr_ + nf_;
+    bool same = f_slopes_.size() == nf_;
+    for (int f = 0; f < nf_ && same; ++f) same = f_slopes_[f] == laws[static_cast<std::size_t>(f)].slope;
+    if (!same) {
+      f_slopes_.resize(nf_);
+      for (int f = 0; f < nf_; ++f) f_slopes_[f] = laws[static_cast<std::size_t>(f)].slope;
+      Eigen::MatrixXd F = f_slopes_.asDiagonal() * g_ff_;
+      F.diagonal().array() += 1.0;
+      f_lu_.compute(F);
+    }
+    // A^-1 applied to the columns of `rhs` (rows: bodies, then fixed elements).
+    const auto solve_a = [&](Eigen::MatrixXd rhs) {
+      if (nr_ > 0) rhs.topRows(nr_) = b_lu_.solve(rhs.topRows(nr_));
+      if (nf_ > 0) rhs.bottomRows(nf_) = f_lu_.solve(rhs.bottomRows(nf_));
+      return rhs;
+    };
+    Eigen::VectorXd delta(nr_ + nz);
+    const Eigen::MatrixXd v = solve_a(-residual.head(nu));
+    if (na == 0) {
+      delta = v;
+      return delta;
+    }
+    // C: the contacts' columns of the (bodies, fixed elements) rows; D: the
+    // contacts' rows of the (bodies, fixed elements) columns.
+    Eigen::MatrixXd C(nu, na), D(na, nu), S(na, na);
+    for (int a = 0; a < na; ++a) {
+      const int e = nf_ + a;
+      C.col(a).head(nr_) = E.col(e);
+      C.col(a).tail(nf_) = f_slopes_.cwiseProduct(G.col(e).head(nf_));
+      const double slope = laws[static_cast<std::size_t>(e)].slope;
+      D.row(a).head(nr_) = -slope * E.col(e).transpose();
+      D.row(a).tail(nf_) = slope * G.row(e).head(nf_);
+      S.row(a) = slope * G.row(e).tail(na);
+      S(a, a) += 1.0;
+    }
+    const Eigen::MatrixXd X = solve_a(C);
+    S.noalias() -= D * X;
+    const Eigen::FullPivLU<Eigen::MatrixXd> s_lu(S);
+    if (!s_lu.isInvertible())
+      throw std::runtime_error("the linearised step is singular: a contact's system has no solution");
+    const Eigen::VectorXd dz_c = s_lu.solve(-residual.tail(na) - D * v.col(0));
+    delta.head(nu) = v.col(0) - X * dz_c;
+    delta.tail(na) = dz_c;
+    return delta;
+  }
+
   /// Phi^T sum_e g_e F_e over every mode.
   void modal_force(Eigen::VectorXd& out) const {
-    out.noalias() = phi_s_.transpose() * (gf_ * zf_);
+    out.noalias() = hf_.transpose() * zf_;
     for (const ActiveContact& c : active_) {
       const auto& blk = s_.blocks[static_cast<std::size_t>(c.block)];
       out.segment(blk.mode_offset, c.p.size()).noalias() += zc_[static_cast<std::size_t>(c.index)] * c.p;
@@ -485,10 +543,10 @@ class Runner {
     for (int j = 0; j < ns_; ++j)
       if (d_.kind[static_cast<std::size_t>(j)] == ModalDynamicsSet::kAbsent) eta_[j] = v_[j] = 0.0;
     gather_contacts(0);
-    const Eigen::VectorXd q_s = phi_s_ * eta_, qd_s = phi_s_ * v_;
+    const Eigen::VectorXd x_f = hf_ * eta_, xd_f = hf_ * v_;
     for (int f = 0; f < nf_; ++f) {
-      xf_[f] = off_f_[f] + gf_.col(f).dot(q_s);
-      xdf_[f] = gf_.col(f).dot(qd_s);
+      xf_[f] = off_f_[f] + x_f[f];
+      xdf_[f] = xd_f[f];
       zf_[f] = evaluate_law(s_.fixed[static_cast<std::size_t>(f)].law, xf_[f], xdf_[f], 0.0).force;
     }
     std::vector<bool> active(static_cast<std::size_t>(nc_), false);
@@ -519,8 +577,13 @@ class Runner {
   const ModalDynamicsSet& d_;
   const LinearisedExcitation& x_;
   const int ns_, nr_, nc_, nf_;
-  std::vector<int> block_of_dof_, sdofs_;
-  Eigen::MatrixXd phi_s_, gf_, h_ss_, g_ff_;
+  std::vector<int> block_of_dof_;
+  Eigen::MatrixXd hf_, g_ff_;
+  // The factors of a step's blocks (newton_update_by_blocks): B's, and F's
+  // with the fixed elements' slopes they were made for.
+  Eigen::FullPivLU<Eigen::MatrixXd> b_lu_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> f_lu_;
+  Eigen::VectorXd f_slopes_;  // nf x ns: each fixed element's Phi^T g_e; nf x nf: hf_ D^-1 hf_^T
   Eigen::VectorXd off_f_, constant_modal_, m_, c_, inv_d_;
   double gain_ = 0.0;  // 2 / h (0 in statics)
   // The state.
