@@ -37,9 +37,14 @@ std::shared_ptr<Factor> factor(const Eigen::SparseMatrix<double>& A, const char*
   return f;
 }
 
-/// 1 / (k - m Omega^2 + i Omega c): one mode's receptance per unit p^2.
+/// 1 / (k - m Omega^2 + i Omega c): one mode's receptance per unit p^2,
+/// as (a - i b) / (a^2 + b^2): std::complex's division guards infinities
+/// and NaN by a library call that was most of a point figure's time, and
+/// a and b here are finite and far from overflow in their squares.
 Complex receptance(const ModalDynamics& mode, double omega) {
-  return 1.0 / Complex(mode.k - mode.m * omega * omega, omega * mode.c);
+  const double a = mode.k - mode.m * omega * omega, b = omega * mode.c;
+  const double norm = a * a + b * b;
+  return Complex(a / norm, -b / norm);
 }
 
 }  // namespace
