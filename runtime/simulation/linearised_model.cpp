@@ -227,7 +227,10 @@ LinearisedModel::LinearisedModel(const AssembledModel& model, const Linearisatio
   omega_ = omega;
 
   // The grid and what acts on it.
-  int steps = static_cast<int>(std::ceil(point.t_end * omega / kTwoPi * kLinearisedStepsPerPeriod));
+  const double periods = point.t_end * omega / kTwoPi;
+  int steps = static_cast<int>(std::ceil(periods * kLinearisedStepsPerPeriod));
+  if (point.step_budget > 0 && steps > point.step_budget)
+    steps = static_cast<int>(std::ceil(periods * kLinearisedLeastStepsPerPeriod));
   steps = std::clamp(steps, 1, kLinearisedMaxSteps);
   excitation_.steps = steps;
   excitation_.step = point.t_end / steps;

@@ -27,17 +27,25 @@ namespace mbfe::runtime {
 
 /// Steps per period of the fastest excitation: h = 2 pi / (this omega) (s).
 constexpr double kLinearisedStepsPerPeriod = 24.0;
+/// The fewest steps per period a run within a step budget may take: the
+/// average-acceleration rule's period error is (omega h)^2 / 12, 2.3 % at
+/// 12 steps a period against 0.6 % at 24, and both runs of an estimate share
+/// it (measured against 24: docs/damping-adjustment.md, "Its cost").
+constexpr double kLinearisedLeastStepsPerPeriod = 12.0;
 /// Modes whose slowest root exceeds this many times the fastest excitation
 /// are quasi-static (unless the adjustment changes them).
 constexpr double kQuasiStaticFactor = 4.0;
 /// The most steps a linearised run takes (its cost is linear in them).
 constexpr int kLinearisedMaxSteps = 200000;
 /// A run's estimate takes the linearised run only when its steps are at most
-/// this many times the run's own: a step of the linearised run costs about
-/// what a step of the adjusted run costs (both pass over the model's modes),
-/// and two of them are made, so beyond this the estimate would cost more
-/// than the run it estimates (measured: docs/damping-adjustment.md, "Its cost").
-constexpr double kLinearisedStepsPerRunStep = 4.0;
+/// this many times the run's own: a step of the linearised run costs a third
+/// to a half of an adjusted RK4 step (one pass over the modes against four
+/// evaluations) and its two runs go on two threads, so within this budget
+/// the estimate costs at most about twice the run's integration (measured:
+/// docs/damping-adjustment.md, "Its cost"). It admits the catenaries at
+/// their shipped 1e-3 s step at 12 steps a period of the strip crossing
+/// their elements.
+constexpr double kLinearisedStepsPerRunStep = 5.0;
 
 /// Why the linearised run cannot stand for `model`'s adjusted runs, in a few
 /// words ("a pin or slider_pin contact"), or empty when it can.
@@ -49,7 +57,8 @@ struct LinearisationPoint {
   bool static_start = true;  // the run starts at its static equilibrium (the linear model starts at its own)
   double t_end = 0.0;        // s
   /// The most steps the linearised run may take for this estimate (0: no
-  /// limit); linearised_estimate refuses beyond it.
+  /// limit): beyond it the grid takes kLinearisedLeastStepsPerPeriod, and
+  /// linearised_estimate refuses when even that does not fit.
   int step_budget = 0;
 };
 
