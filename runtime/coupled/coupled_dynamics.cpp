@@ -8,6 +8,7 @@
 
 #include "runtime/errors/multibody_errors.h"
 #include "runtime/fem/hermite_shape.h"
+#include "runtime/linalg/inverse_norm.h"
 #include "runtime/linalg/sparse_ldlt_solve.h"
 
 namespace mbfe::runtime {
@@ -34,17 +35,14 @@ void solve_with(const Eigen::FullPivLU<Eigen::MatrixXd>& lu, const Eigen::Vector
 // matrix near singular (or exactly: a zero pivot gives inf), which the
 // caller then judges by Eigen's estimate.
 bool clearly_regular(const Eigen::FullPivLU<Eigen::MatrixXd>& lu, double norm, double floor, Eigen::VectorXd& tmp) {
-  const Eigen::Index n = lu.rows();
-  if (n == 0) return true;
-  double sum = 0.0;
-  for (Eigen::Index c = 0; c < n; ++c) {
-    tmp.setZero(n);
-    tmp[lu.permutationP().indices()[c]] = 1.0;  // P e_c
-    lu.matrixLU().triangularView<Eigen::UnitLower>().solveInPlace(tmp);
-    lu.matrixLU().triangularView<Eigen::Upper>().solveInPlace(tmp);
-    sum += tmp.squaredNorm();
-  }
-  return 1.0 / (norm * std::sqrt(sum)) >= floor;
+  if (lu.rows() == 0) return true;
+  // A^-1 e_c = Q U^-1 L^-1 P e_c; Q permutes the column's entries, leaving its norm.
+  const double inverse_norm = inverse_frobenius_norm(lu.rows(), tmp, [&lu](Eigen::Index c, Eigen::VectorXd& x) {
+    x[lu.permutationP().indices()[c]] = 1.0;  // P e_c
+    lu.matrixLU().triangularView<Eigen::UnitLower>().solveInPlace(x);
+    lu.matrixLU().triangularView<Eigen::Upper>().solveInPlace(x);
+  });
+  return 1.0 / (norm * inverse_norm) >= floor;
 }
 
 }  // namespace

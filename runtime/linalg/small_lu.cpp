@@ -1,5 +1,7 @@
 #include "runtime/linalg/small_lu.h"
 
+#include "runtime/linalg/inverse_norm.h"
+
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -92,20 +94,12 @@ double SmallLu::rcond_lower_cheap() const {
 
 double SmallLu::inverse_norm() {
   if (inverse_valid_) return inverse_norm_;
-  const int n = size();
-  double sum = 0.0;
-  if (!nonsingular_) {
-    sum = INFINITY;
-  } else {
-    std::vector<double>& column = inverse_column_;
-    column.resize(n);
-    for (int c = 0; c < n; ++c) {
-      for (int i = 0; i < n; ++i) column[i] = i == c ? 1.0 : 0.0;
-      solve_in_place(column.data());
-      for (int i = 0; i < n; ++i) sum += column[i] * column[i];
-    }
-  }
-  inverse_norm_ = std::sqrt(sum);
+  inverse_norm_ = nonsingular_ ? inverse_frobenius_norm(size(), inverse_column_,
+                                                         [this](Eigen::Index c, Eigen::VectorXd& x) {
+                                                           x[c] = 1.0;
+                                                           solve_in_place(x.data());
+                                                         })
+                               : INFINITY;
   inverse_valid_ = true;
   return inverse_norm_;
 }

@@ -70,7 +70,7 @@ class SmallLu {
   Eigen::MatrixXd lu_;      // L below the diagonal (unit diagonal implied), U on and above
   std::vector<int> perm_;   // row i of P A is row perm_[i] of A
   mutable std::vector<double> work_;
-  std::vector<double> inverse_column_;
+  Eigen::VectorXd inverse_column_;
   double norm_ = 0.0, inverse_norm_ = 0.0, det_abs_ = 0.0;
   bool nonsingular_ = true, inverse_valid_ = false;
 };
