@@ -8,7 +8,6 @@
 #include "api/mbfe.h"
 #include "frontend/parse_model.h"
 #include "ir/coordinate_layout.h"
-#include "runtime/multibody/quaternion_check.h"
 #include "tool/cli_args.h"
 #include "tool/commands.h"
 #include "tool/model_warnings_notice.h"
@@ -106,15 +105,18 @@ int cmd_eval(const Args& args) {
     throw UsageError(std::string("--") + flag + " has " + std::to_string(values.size()) + " entries, expected " +
                      std::to_string(n) + what);
   }
-  if (!state.q.empty())
-    if (const std::string wrong = runtime::non_unit_quaternion(model.ir(), state.q.data()); !wrong.empty())
-      throw UsageError("--q: " + wrong);
   Evaluation e;
   try {
     e = model.evaluate(state);
   } catch (const runtime::ContactError& error) {  // a slider off its beam
     std::cerr << "mbfe eval: " << error.what() << "\n";
     return 3;
+  } catch (const runtime::InvalidInput& error) {
+    // Model::evaluate names the state's field ("q: the quaternion of body
+    // ..."); here that field is a flag.
+    const std::string what = error.what();
+    if (what.rfind("q: ", 0) == 0) throw UsageError("--" + what);
+    throw;
   }
 
   nlohmann::json out;
