@@ -29,11 +29,9 @@ class Sink : public runtime::SimulationObserver {
 
 std::string path(const char* model) { return std::string(MBFE_SOURCE_DIR) + "/models/" + model + ".yaml"; }
 
+/// The model's `simulation:` block, every row, a probe at midspan.
 runtime::SimulationRequest request(const Model& m) {
-  runtime::SimulationRequest r;
-  r.integrator = runtime::parse_integrator(m.ir().simulation.integrator);
-  r.step = m.ir().simulation.step;
-  r.t_end = m.ir().simulation.t_end;
+  runtime::SimulationRequest r = m.request();
   r.every = 1;
   r.probes = {runtime::parse_probe("deck@10")};
   return r;
