@@ -105,7 +105,8 @@ LinearisedEstimate linearised_estimate(const AssembledModel& model, const Linear
   if (point.step_budget > 0 && lm.excitation().steps > point.step_budget)
     throw std::runtime_error("skipped: it would take " + std::to_string(lm.excitation().steps) + " steps, more than " +
                              std::to_string(point.step_budget) +
-                             " (" + std::to_string(int(kLinearisedStepsPerRunStep)) + " times the run's) even at " + std::to_string(int(kLinearisedLeastStepsPerPeriod)) +
+                             " (" + std::to_string(int(kLinearisedStepsPerRunStep)) + " times the run's) even at " +
+                             std::to_string(int(kLinearisedLeastStepsPerPeriod)) +
                              " steps a period of its fastest excitation, and cost more than the run; the point "
                              "figures stand (a shorter step brings it back; the adjustment check measures)");
   const ModalDynamicsSet original = lm.original_modes(), adjusted = lm.adjusted_modes();

@@ -133,7 +133,8 @@ std::vector<double> nodal_newmark(const TwoDofBeam& beam, const ElementLaw& law,
     bool same = true;
     for (std::size_t e = 0; e < fixed.size(); ++e) {
       if (!fixed[e].law.no_pull) continue;
-      const double force = fixed[e].law.stiffness * (fixed[e].offset + w[e].dot(u)) + fixed[e].law.damping * w[e].dot(v);
+      const ElementLaw& l = fixed[e].law;
+      const double force = l.stiffness * (fixed[e].offset + w[e].dot(u)) + l.damping * w[e].dot(v);
       if ((force < 0.0) == on[e]) {
         on[e] = !on[e];
         same = false;
