@@ -172,7 +172,7 @@ TEST(LinearisedEstimate, AutoChoosesTheLowestLimitWhoseLinearisedRunMeetsTheTole
 // Over its step budget the linearised run takes 12 steps a period instead of
 // 24. Newmark's period error grows from 0.6 % to 2.3 % there, shared by both
 // runs of the estimate, so the estimate moves by little: measured 1.1 % of
-// itself here (a 42 % change of the wheel's force; 0.04 and 0.27 % on the
+// itself here (a 42 % change of the wheel's force; 0.02 and 0.31 % on the
 // two-span catenary under cap and mass, docs/damping-adjustment.md). 3 %
 // holds that.
 constexpr double kCoarseAgainstFine = 3e-2;
