@@ -50,13 +50,26 @@ CoupledModel::CoupledModel(const mbfe_model_v1& kernels, CoupledBeams beams, std
     if (!problem.str().empty())
       throw std::invalid_argument("beam '" + b.mesh.name + "': " + problem.str() + "; expected " + std::to_string(n) +
                                   " free DOFs");
-    auto factor = std::make_shared<Factor>(b.M);
-    if (factor->info() != Eigen::Success || (n > 0 && !(factor->vectorD().minCoeff() > 0.0))) {
-      throw std::runtime_error("beam '" + b.mesh.name +
-                               "': mass matrix is not positive definite (a lumped mass "
-                               "matrix without rotary inertia cannot carry a contact)");
+    // A beam that is an adjusted structure of its own on its M (base M, one
+    // range, the same matrix) shares that structure's factorisation of it.
+    std::shared_ptr<const Factor> shared;
+    if (!own) {
+      const LowRankStructure& st = *structures_[static_cast<std::size_t>(b.structure)];
+      if (st.base() == LowRankStructure::Base::kMass && st.ranges().size() == 1 &&
+          st.M().nonZeros() == b.M.nonZeros() && (st.M() - b.M).norm() == 0.0)
+        shared = st.shared_base_factor();
     }
-    mass_factors_.push_back(std::move(factor));
+    if (shared) {
+      mass_factors_.push_back(std::move(shared));
+    } else {
+      auto factor = std::make_shared<Factor>(b.M);
+      if (factor->info() != Eigen::Success || (n > 0 && !(factor->vectorD().minCoeff() > 0.0))) {
+        throw std::runtime_error("beam '" + b.mesh.name +
+                                 "': mass matrix is not positive definite (a lumped mass "
+                                 "matrix without rotary inertia cannot carry a contact)");
+      }
+      mass_factors_.push_back(std::move(factor));
+    }
     loads_.segment(b.offset, n) = b.P;
   }
   // Each structure covers beams that name it, whole.

@@ -73,7 +73,8 @@ class CoupledModel {
   /// The constant loads P of every beam, over q_c (N).
   const Eigen::VectorXd& loads() const { return loads_; }
   /// The factorisation of beam b's M (a beam outside any structure solves
-  /// with it; a constraint's columns W = M^-1 J_c^T use it).
+  /// with it; a constraint's columns W = M^-1 J_c^T use it); the adjusted
+  /// structure's own when the beam is one on its M, not a second one.
   const Factor& mass_factor(int beam) const { return *mass_factors_[static_cast<std::size_t>(beam)]; }
 
   /// Split coordinates (docs/damping-adjustment.md, "Split coordinates") can

@@ -100,6 +100,9 @@ class LowRankStructure {
   const Eigen::SparseMatrix<double>& B() const { return base_ == Base::kMass ? M_ : K_; }
   /// Its factorisation (shared: constant once built).
   const Factor& base_factor() const { return *factor_; }
+  /// The same, to share: a beam that is a structure of its own on its M
+  /// solves with it instead of a second factorisation (coupled_model.h).
+  std::shared_ptr<const Factor> shared_base_factor() const { return factor_; }
   const RowMajorMatrix& phi() const { return phi_; }
   const Eigen::VectorXd& modal_stiffness() const { return k_; }
   /// b_j: B's modal value on each kept mode (1 or k_j).

@@ -162,14 +162,15 @@ constexpr double kFormulationForceRel = 1e-9;
 // The beam as an adjusted structure over every mode (eq (27)) with its own
 // Rayleigh modal values is the beam itself: same right-hand side as its
 // sparse C and K.
-std::shared_ptr<CoupledDynamics> every_mode_dynamics(const testing::TestBeam& beam) {
+/// `m_scale` != 1 gives the structure another M than the beam's.
+std::shared_ptr<CoupledDynamics> every_mode_dynamics(const testing::TestBeam& beam, double m_scale = 1.0) {
   const Eigen::MatrixXd M(beam.beam.M), K(beam.K), C(beam.C);
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
   const int n = static_cast<int>(M.rows());
   LowRankStructure::Parts p;
   p.name = beam.beam.mesh.name;
   p.ranges = {{0, n}};
-  p.M = beam.beam.M;
+  p.M = beam.beam.M * m_scale;
   p.K = beam.K;
   p.P = beam.beam.P;
   p.phi = eig.eigenvectors();
@@ -212,6 +213,14 @@ TEST(CoupledSystem, EveryModeStructureIsTheBeamItself) {
   ASSERT_EQ(ra.lambda.size(), 1);
   EXPECT_NEAR(ra.lambda(0), rb.lambda(0), kFormulationForceRel * std::abs(rb.lambda(0)));
   EXPECT_LT(ra.phi_max, kPhiTol);
+  // The beam is a structure of its own on its M: one factorisation of M,
+  // the structure's, serves both (not a second one of the same matrix).
+  const std::shared_ptr<CoupledDynamics> one = every_mode_dynamics(beam);
+  EXPECT_EQ(&one->model().mass_factor(0), &one->model().structures()[0]->base_factor());
+  // A structure on another M than the beam's: the beam factors its own.
+  const std::shared_ptr<CoupledDynamics> other = every_mode_dynamics(beam, 2.0);
+  EXPECT_NE(&other->model().mass_factor(0), &other->model().structures()[0]->base_factor());
+  EXPECT_EQ(other->model().mass_factor(0).rows(), beam.beam.M.rows());
 }
 
 // The closure starts from the last v extrapolated with its v' (error O(h^2)),
