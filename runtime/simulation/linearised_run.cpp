@@ -1,6 +1,7 @@
 // The stepper of the linearised run (linearised_run.h): one class whose
 // state (modes, bodies, elements) every part of a step reads and writes;
-// split in files it would pass all of it around, so it is over 400 lines.
+// split in files it would pass all of it around, so it is about 500 lines.
+// The Newton update of a step's small system is linearised_step_solve.h.
 #include "runtime/simulation/linearised_run.h"
 
 #include <Eigen/LU>
@@ -8,6 +9,8 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "runtime/simulation/linearised_step_solve.h"
 
 namespace mbfe::runtime {
 
@@ -25,10 +28,6 @@ constexpr double kSettledForce = 1e-10;
 // depends on the deflection through the slope under the contact, a small
 // correction the second pass takes; the third leaves round-off.
 constexpr int kStaticRatePasses = 3;
-// A pivot of a step's equilibrated system (every row and column scaled to a
-// largest entry of 1) below this: a body held by nothing (singular).
-constexpr double kSingularPivot = 1e-13;
-
 /// F and dF/dx of a law at x with the rate x' = rate (dx'/dx = rate_slope).
 struct LawValue {
   double force = 0.0, slope = 0.0;
@@ -73,7 +72,8 @@ class Runner {
         ns_(s.modes),
         nr_(static_cast<int>(s.mass.rows())),
         nc_(static_cast<int>(s.contact_laws.size())),
-        nf_(static_cast<int>(s.fixed.size())) {
+        nf_(static_cast<int>(s.fixed.size())),
+        step_solve_(nr_, nf_) {
     check_sizes();
     block_of_dof_.assign(static_cast<std::size_t>(s.dofs), -1);
     for (std::size_t b = 0; b < s.blocks.size(); ++b) {
@@ -134,10 +134,7 @@ class Runner {
     const double a4 = 4.0 / (h * h), a5 = 4.0 / h;
     set_inverse(/*statics=*/false);
     const Eigen::MatrixXd B = s_.stiffness + gain_ * s_.damping + a4 * s_.mass;
-    if (nr_ > 0) b_lu_.compute(B);
-    if (nr_ > 0 && !b_lu_.isInvertible())
-      throw std::runtime_error("the linearised step is singular: the bodies' M, C, K give no regular step matrix");
-    f_slopes_.resize(0);
+    step_solve_.start_steps(B);
     Eigen::VectorXd fs(ns_), rq(ns_), ry(nr_), eta_p(ns_), force_on_modes(ns_);
     for (int k = 1; k <= x_.steps; ++k) {
       modal_load(k, fs);
@@ -328,15 +325,18 @@ class Runner {
         laws[static_cast<std::size_t>(e)] = evaluate_law(law, x[e], rate, rate_gain);
       }
     };
-    Eigen::VectorXd residual(n);
+    Eigen::VectorXd residual(n), slopes(nz);
     Eigen::VectorXd x = xp - G * z + E.transpose() * y;
     evaluate(x);
     bool settled = false;
     for (int it = 0; it < kMaxNewton && !settled; ++it) {
       residual.head(nr_) = B * y + E * z - ry;
-      for (int e = 0; e < nz; ++e) residual[nr_ + e] = z[e] - laws[static_cast<std::size_t>(e)].force;
-      const Eigen::VectorXd delta =
-          statics ? newton_update_equilibrated(B, E, G, laws, residual) : newton_update_by_blocks(E, G, laws, residual);
+      for (int e = 0; e < nz; ++e) {
+        residual[nr_ + e] = z[e] - laws[static_cast<std::size_t>(e)].force;
+        slopes[e] = laws[static_cast<std::size_t>(e)].slope;
+      }
+      const Eigen::VectorXd delta = statics ? step_solve_.equilibrated(B, E, G, slopes, residual)
+                                            : step_solve_.by_blocks(E, G, slopes, residual);
       y += delta.head(nr_);
       z += delta.tail(nz);
       x = xp - G * z + E.transpose() * y;
@@ -363,101 +363,6 @@ class Runner {
     x_new_ = x;
     for (int a = 0; a < na; ++a) zc_[static_cast<std::size_t>(active_[static_cast<std::size_t>(a)].index)] = z[nf_ + a];
     return settled;
-  }
-
-  /// The Newton update of a step's system
-  ///   J = [[B, E], [-L' E^T, I + L' G]],  J delta = -residual,
-  /// by one LU of J with its rows and columns equilibrated: forces,
-  /// stiffnesses and compliances differ by twenty orders of magnitude
-  /// between them. It serves the statics, where B = K_r may be singular (a
-  /// body held by its contacts alone) and only the whole system is regular.
-  Eigen::VectorXd newton_update_equilibrated(const Eigen::MatrixXd& B, const Eigen::MatrixXd& E,
-                                             const Eigen::MatrixXd& G, const std::vector<LawValue>& laws,
-                                             const Eigen::VectorXd& residual) const {
-    const int nz = static_cast<int>(G.rows()), n = nr_ + nz;
-    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n);
-    J.topLeftCorner(nr_, nr_) = B;
-    J.topRightCorner(nr_, nz) = E;
-    J.bottomRightCorner(nz, nz).setIdentity();
-    for (int e = 0; e < nz; ++e) {
-      const double slope = laws[static_cast<std::size_t>(e)].slope;
-      if (slope == 0.0) continue;
-      J.block(nr_ + e, 0, 1, nr_) = -slope * E.col(e).transpose();
-      J.block(nr_ + e, nr_, 1, nz) += slope * G.row(e);
-    }
-    Eigen::VectorXd row_scale(n), col_scale(n);
-    for (int i = 0; i < n; ++i) {
-      const double largest = J.row(i).cwiseAbs().maxCoeff();
-      row_scale[i] = largest > 0.0 ? 1.0 / largest : 1.0;
-    }
-    J = row_scale.asDiagonal() * J;
-    for (int i = 0; i < n; ++i) {
-      const double largest = J.col(i).cwiseAbs().maxCoeff();
-      col_scale[i] = largest > 0.0 ? 1.0 / largest : 1.0;
-    }
-    J = J * col_scale.asDiagonal();
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu(J);
-    if (!(lu.matrixLU().diagonal().cwiseAbs().minCoeff() > kSingularPivot))
-      throw std::runtime_error(
-          "the linearised static equilibrium is singular: a body is held by nothing (no contact pressing, no spring)");
-    return col_scale.cwiseProduct(lu.solve(-row_scale.cwiseProduct(residual)));
-  }
-
-  /// The same update in a step, where B = K_r + 2 C_r / h + 4 M_r / h^2 is
-  /// regular and constant, by blocks: the bodies and the fixed elements do
-  /// not couple directly (a fixed element acts on beams alone, E_f = 0), so
-  ///   A = [[B, 0], [0, F]],  F = I + L_f' G_ff,
-  /// and the moving contacts (a few) join through the Schur complement
-  ///   S = I + L_c' G_cc - D A^-1 C.
-  /// B is factored once a run and F only when a fixed element changes state
-  /// (a dropper going slack), so a step no longer factors the whole system:
-  /// it was a quarter of the linearised run's time on a catenary.
-  Eigen::VectorXd newton_update_by_blocks(const Eigen::MatrixXd& E, const Eigen::MatrixXd& G,
-                                          const std::vector<LawValue>& laws, const Eigen::VectorXd& residual) {
-    const int nz = static_cast<int>(G.rows()), na = nz - nf_, nu = nr_ + nf_;
-    bool same = f_slopes_.size() == nf_;
-    for (int f = 0; f < nf_ && same; ++f) same = f_slopes_[f] == laws[static_cast<std::size_t>(f)].slope;
-    if (!same) {
-      f_slopes_.resize(nf_);
-      for (int f = 0; f < nf_; ++f) f_slopes_[f] = laws[static_cast<std::size_t>(f)].slope;
-      Eigen::MatrixXd F = f_slopes_.asDiagonal() * g_ff_;
-      F.diagonal().array() += 1.0;
-      f_lu_.compute(F);
-    }
-    // A^-1 applied to the columns of `rhs` (rows: bodies, then fixed elements).
-    const auto solve_a = [&](Eigen::MatrixXd rhs) {
-      if (nr_ > 0) rhs.topRows(nr_) = b_lu_.solve(rhs.topRows(nr_));
-      if (nf_ > 0) rhs.bottomRows(nf_) = f_lu_.solve(rhs.bottomRows(nf_));
-      return rhs;
-    };
-    Eigen::VectorXd delta(nr_ + nz);
-    const Eigen::MatrixXd v = solve_a(-residual.head(nu));
-    if (na == 0) {
-      delta = v;
-      return delta;
-    }
-    // C: the contacts' columns of the (bodies, fixed elements) rows; D: the
-    // contacts' rows of the (bodies, fixed elements) columns.
-    Eigen::MatrixXd C(nu, na), D(na, nu), S(na, na);
-    for (int a = 0; a < na; ++a) {
-      const int e = nf_ + a;
-      C.col(a).head(nr_) = E.col(e);
-      C.col(a).tail(nf_) = f_slopes_.cwiseProduct(G.col(e).head(nf_));
-      const double slope = laws[static_cast<std::size_t>(e)].slope;
-      D.row(a).head(nr_) = -slope * E.col(e).transpose();
-      D.row(a).tail(nf_) = slope * G.row(e).head(nf_);
-      S.row(a) = slope * G.row(e).tail(na);
-      S(a, a) += 1.0;
-    }
-    const Eigen::MatrixXd X = solve_a(C);
-    S.noalias() -= D * X;
-    const Eigen::FullPivLU<Eigen::MatrixXd> s_lu(S);
-    if (!s_lu.isInvertible())
-      throw std::runtime_error("the linearised step is singular: a contact's system has no solution");
-    const Eigen::VectorXd dz_c = s_lu.solve(-residual.tail(na) - D * v.col(0));
-    delta.head(nu) = v.col(0) - X * dz_c;
-    delta.tail(na) = dz_c;
-    return delta;
   }
 
   /// Phi^T sum_e g_e F_e over every mode.
@@ -578,12 +483,9 @@ class Runner {
   const LinearisedExcitation& x_;
   const int ns_, nr_, nc_, nf_;
   std::vector<int> block_of_dof_;
-  Eigen::MatrixXd hf_, g_ff_;
-  // The factors of a step's blocks (newton_update_by_blocks): B's, and F's
-  // with the fixed elements' slopes they were made for.
-  Eigen::FullPivLU<Eigen::MatrixXd> b_lu_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> f_lu_;
-  Eigen::VectorXd f_slopes_;  // nf x ns: each fixed element's Phi^T g_e; nf x nf: hf_ D^-1 hf_^T
+  Eigen::MatrixXd hf_;    // nf x ns: each fixed element's Phi^T g_e
+  Eigen::MatrixXd g_ff_;  // nf x nf: hf_ D^-1 hf_^T
+  LinearisedStepSolve step_solve_;
   Eigen::VectorXd off_f_, constant_modal_, m_, c_, inv_d_;
   double gain_ = 0.0;  // 2 / h (0 in statics)
   // The state.
