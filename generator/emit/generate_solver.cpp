@@ -85,9 +85,13 @@ GeneratedSolver generate_solver_unchecked(const ir::Model& model) {
   GeneratedSolver solver;
   SolverParts parts;
   std::ostringstream kernels;
-  for (Kernel* k : {&d.mass_matrix, &d.inertial_forces, &d.generalized_forces, &d.dynamics}) {
-    eliminate_common_subexpressions(*k);
-    const EmittedKernel e = emit_kernel(*k, inputs, params, "");
+  for (const Kernel* k : {&d.mass_matrix, &d.inertial_forces, &d.generalized_forces, &d.dynamics}) {
+    // A copy: CSE may hoist a repeated part of an output into a temporary of
+    // this kernel alone, and the tangents below differentiate the outputs as
+    // the code list defines them.
+    Kernel printed = *k;
+    eliminate_common_subexpressions(printed);
+    const EmittedKernel e = emit_kernel(printed, inputs, params, "");
     // The fused kernel repeats the other three; count it apart, not in the total.
     if (k != &d.dynamics) solver.operations.push_back({k->name, e.emitted, e.executed});
     else solver.fused = {k->name, e.emitted, e.executed};
