@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/simulation/simulate.h"
+#include "runtime/simulation/simulation_types.h"
 
 namespace mbfe {
 

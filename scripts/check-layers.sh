@@ -100,6 +100,37 @@ while IFS= read -r file; do
   done < <(grep -n '^[[:space:]]*#include' "$file" || true)
 done < <(git ls-files --cached --others --exclude-standard -- $(for f in $project_folders; do echo "$f/*.h" "$f/*.cpp" "$f/*.cc"; done) 2>/dev/null)
 
+# The public C++ API (api/mbfe.h and the headers it names) reaches, through
+# its project #includes, only the runtime's value types: requests, rows,
+# reports, spectra, step limits, errors, the solver ABI and the modal store a
+# caller may give. The runtime's classes stay behind it (docs/api.md).
+public_headers="api/mbfe.h api/simulator.h api/results_output.h api/run_record.h api/vtk_animation.h"
+public_runtime="runtime/abi/mbfe_model_abi.h runtime/advisor/model_spectrum.h
+  runtime/damping/beam_analysis_options.h runtime/errors/invalid_input.h runtime/errors/multibody_errors.h
+  runtime/integrators/integrator_spec.h runtime/integrators/simulation_result.h runtime/modal/modal_basis.h
+  runtime/modal/modal_basis_store.h runtime/modal/slicing_defaults.h runtime/modal/state_spectrum.h
+  runtime/simulation/model_kind.h runtime/simulation/simulation_types.h runtime/stability/step_limits.h"
+declare -A reached=()
+pending=($public_headers)
+while ((${#pending[@]})); do
+  header=${pending[0]}
+  pending=("${pending[@]:1}")
+  [[ -n ${reached[$header]:-} ]] && continue
+  reached[$header]=1
+  while IFS= read -r hit; do
+    line=${hit%%:*}
+    if [[ ${hit#*:} =~ \#include[[:space:]]*\"([^\"]+)\" && -f ${BASH_REMATCH[1]} ]]; then
+      target=${BASH_REMATCH[1]}
+      if [[ $target == runtime/* && " $(echo $public_runtime) " != *" $target "* ]]; then
+        echo "$header:$line: the public API reaches the runtime's internal $target"
+        violations=$((violations + 1))
+      else
+        pending+=("$target")
+      fi
+    fi
+  done < <(grep -n '^[[:space:]]*#include' "$header" || true)
+done
+
 if ((violations > 0)); then
   echo "check-layers: $violations include(s) against the layering (see the comment at the top of $0)"
   exit 1

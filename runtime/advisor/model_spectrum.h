@@ -23,8 +23,7 @@
 #include <optional>
 #include <vector>
 
-#include "runtime/coupled/linearization.h"
-#include "runtime/integrators/integrator.h"
+#include "runtime/integrators/integrator_spec.h"
 #include "runtime/modal/state_spectrum.h"
 #include "runtime/stability/step_limits.h"
 

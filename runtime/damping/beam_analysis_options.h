@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "runtime/modal/modal_basis_store.h"
+#include "runtime/modal/slicing_defaults.h"
 
 namespace mbfe::runtime {
 
@@ -22,7 +23,7 @@ struct BeamAnalysisOptions {
   /// operators need (a coupled model's time integration).
   bool modes_kept_by_cap = false;
   /// Modes per Lanczos run of that slicing (SlicedModalOptions::slice_modes).
-  int slice_modes = SlicedModalOptions{}.slice_modes;
+  int slice_modes = kDefaultSliceModes;
   /// For a coupled model whose runs all use the original beams (--adjust
   /// off): its large beams skip the modes their cap keeps (the slicing, the
   /// expensive part of the set-up), and adjusted runs of it are refused.

@@ -22,6 +22,8 @@
 
 #include <Eigen/Core>
 
+#include "runtime/integrators/simulation_result.h"
+
 namespace mbfe::runtime {
 
 class SecondOrderSystem {
@@ -53,13 +55,6 @@ class SecondOrderSystem {
   /// consistent start of a step sequence.
   virtual void accelerations(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                              Eigen::VectorXd& a, Eigen::VectorXd& lambda) = 0;
-};
-
-/// What a Newton-based stepper did over a run (reported by `mbfe simulate`).
-struct NewtonStatistics {
-  long iterations = 0;      // Newton iterations, every step
-  long factorizations = 0;  // iteration matrices formed and factored
-  long steps = 0;           // steps taken
 };
 
 }  // namespace mbfe::runtime

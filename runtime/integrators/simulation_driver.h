@@ -40,6 +40,7 @@
 
 #include "runtime/integrators/integrator.h"
 #include "runtime/integrators/ode_system.h"
+#include "runtime/integrators/simulation_result.h"
 
 namespace mbfe::runtime {
 
@@ -62,23 +63,6 @@ struct SimulationOptions {
   /// Asked before every step with the time reached and the steps taken;
   /// false stops the run there (status kInterrupted). Empty = go on.
   std::function<bool(double t, std::int64_t steps)> keep_going;
-};
-
-enum class SimulationStatus { kCompleted, kDiverged, kInterrupted, kFailed };
-
-struct SimulationResult {
-  SimulationStatus status = SimulationStatus::kCompleted;
-  double t = 0.0;            // s: time of the last state that passed the checks
-                             // (kDiverged: t of the step that failed them is t + step)
-  std::int64_t steps = 0;    // accepted steps
-  double step = 0.0;         // s, as asked
-  std::string integrator;    // canonical integrator name
-  double norm = 0.0;         // |y| at the failing step (kDiverged; may be inf or nan)
-  double bound = 0.0;        // the bound it exceeded (kDiverged)
-  std::string message;       // kFailed: what the system threw
-  std::int64_t rows = 0;     // rows handed to the sink
-  double wall_seconds = 0.0;
-  NewtonStatistics newton;   // implicit second-order steppers: iterations, factorisations
 };
 
 using RowSink = std::function<void(double t, const Eigen::VectorXd& y)>;

@@ -22,6 +22,7 @@
 
 #include "runtime/fem/beam_system.h"
 #include "runtime/modal/modal_basis.h"
+#include "runtime/modal/slicing_defaults.h"
 
 namespace mbfe::runtime {
 
@@ -63,11 +64,9 @@ int eigenvalues_below(const Eigen::SparseMatrix<double>& M, const Eigen::SparseM
 struct SlicedModalOptions {
   /// Eigenvalue (rad^2/s^2) below the lowest one, where slicing starts.
   double lower = -1.0;
-  /// Modes per Lanczos run (its basis is 2 slice_modes + 1 wide). Narrow
-  /// runs cost less per mode found (a run's cost grows with the square of
-  /// its width): 30 slices a ten-span wire 1.8x faster than 100, and 20 no
-  /// faster than 30 (bench/spectrum_slicing_bench.cpp).
-  int slice_modes = 30;
+  /// Modes per Lanczos run (its basis is 2 slice_modes + 1 wide;
+  /// slicing_defaults.h says why 30).
+  int slice_modes = kDefaultSliceModes;
   double tolerance = 1e-10;  // relative, on the Ritz values
   int max_restarts = 1000;
   /// As SparseModalOptions::stiffness_factor, for the runs with a shift <= 0.

@@ -3,6 +3,9 @@
 #include <cstring>
 #include <type_traits>
 
+#include "runtime/fem/beam_system.h"
+#include "runtime/modal/modal_analysis.h"
+
 namespace mbfe::runtime {
 
 namespace {

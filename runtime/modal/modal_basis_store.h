@@ -10,11 +10,12 @@
 #include <optional>
 #include <string>
 
-#include "runtime/fem/beam_system.h"
-#include "runtime/modal/modal_analysis.h"
 #include "runtime/modal/modal_basis.h"
 
 namespace mbfe::runtime {
+
+struct BeamSystem;    // runtime/fem/beam_system.h
+struct ModalOptions;  // runtime/modal/modal_analysis.h
 
 class ModalBasisStore {
  public:

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "runtime/integrators/ode_system.h"
+#include "runtime/integrators/simulation_driver.h"
 #include "runtime/simulation/assembled_model.h"
 #include "runtime/simulation/simulation_types.h"
 #include "runtime/stability/step_limits.h"

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "runtime/integrators/integrator_spec.h"
-#include "runtime/integrators/simulation_driver.h"
+#include "runtime/integrators/simulation_result.h"
 
 namespace mbfe::runtime {
 

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/integrators/simulation_driver.h"
 #include "runtime/simulation/assembled_model.h"
 #include "runtime/simulation/simulation_types.h"
 

@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/integrators/integrator.h"
+#include "runtime/integrators/integrator_spec.h"
 
 namespace mbfe::runtime {
 

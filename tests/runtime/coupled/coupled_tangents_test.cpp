@@ -21,6 +21,7 @@
 
 #include "api/mbfe.h"
 #include "runtime/coupled/coupled_tangents.h"
+#include "runtime/coupled/linearization.h"
 #include "runtime/coupled/tangent_spectrum.h"
 #include "runtime/simulation/assembled_model.h"
 #include "runtime/simulation/static_start.h"

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "runtime/fem/beam_system.h"
+#include "runtime/modal/modal_analysis.h"
 #include "runtime/modal/modal_basis_store.h"
 
 namespace mbfe::runtime {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "api/mbfe.h"
+#include "runtime/coupled/linearization.h"
 #include "tests/support/four_bar_oracle.h"
 
 namespace mbfe {
