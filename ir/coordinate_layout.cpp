@@ -24,6 +24,30 @@ std::vector<std::string> velocity_names(JointType type, const std::string& body)
   }
 }
 
+std::vector<Quantity> position_quantities(JointType type) {
+  const Quantity entry = Quantity::kRatio, length = Quantity::kLength;
+  switch (type) {
+    case JointType::kSpherical:
+      return {entry, entry, entry, entry};
+    case JointType::kFree:
+      return {length, length, length, entry, entry, entry, entry};
+    default:
+      return {joint_coordinate(type)};
+  }
+}
+
+std::vector<Quantity> velocity_quantities(JointType type) {
+  const Quantity angle = Quantity::kAngle, length = Quantity::kLength;
+  switch (type) {
+    case JointType::kSpherical:
+      return {angle, angle, angle};
+    case JointType::kFree:
+      return {length, length, length, angle, angle, angle};
+    default:
+      return {joint_coordinate(type)};
+  }
+}
+
 CoordinateLayout coordinate_layout(const Model& model) {
   CoordinateLayout layout;
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
@@ -38,6 +62,8 @@ CoordinateLayout coordinate_layout(const Model& model) {
       layout.velocity_names.push_back(std::move(name));
       layout.velocity_body.push_back(static_cast<int>(b));
     }
+    for (Quantity q : position_quantities(body.joint.type)) layout.position_quantity.push_back(q);
+    for (Quantity q : velocity_quantities(body.joint.type)) layout.velocity_quantity.push_back(q);
   }
   return layout;
 }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "ir/model.h"
+#include "ir/quantity.h"
 
 namespace mbfe::ir {
 
@@ -28,6 +29,12 @@ struct CoordinateLayout {
   std::vector<std::string> velocity_names;
   /// Per entry of v: the body it belongs to.
   std::vector<int> velocity_body;
+  /// Per entry of q: what it measures (an angle, a length, or a quaternion
+  /// entry, a ratio).
+  std::vector<Quantity> position_quantity;
+  /// Per entry of v: the quantity it is the rate of (an angle for an
+  /// angular velocity, a length for a translation's rate).
+  std::vector<Quantity> velocity_quantity;
 };
 
 CoordinateLayout coordinate_layout(const Model& model);
@@ -36,5 +43,8 @@ CoordinateLayout coordinate_layout(const Model& model);
 /// list for q, one for v).
 std::vector<std::string> position_names(JointType type, const std::string& body);
 std::vector<std::string> velocity_names(JointType type, const std::string& body);
+/// What those coordinates measure, in the same order.
+std::vector<Quantity> position_quantities(JointType type);
+std::vector<Quantity> velocity_quantities(JointType type);
 
 }  // namespace mbfe::ir

@@ -13,6 +13,8 @@ RigidCoordinates rigid_coordinates(const ir::Model& model) {
   c.nv = layout.num_velocities;
   c.position_columns = layout.position_names;
   c.velocity_body = layout.velocity_body;
+  c.position_quantity = layout.position_quantity;
+  c.velocity_quantity = layout.velocity_quantity;
   c.rate_of.assign(c.nv, -1);
   c.rotation_of.assign(c.nv, -1);
   c.rotation_axis.assign(c.nv, -1);
@@ -21,30 +23,20 @@ RigidCoordinates rigid_coordinates(const ir::Model& model) {
     const int q0 = layout.first_position[b], v0 = layout.first_velocity[b];
     switch (body.joint.type) {
       case ir::JointType::kRevolute:
-      case ir::JointType::kPrismatic: {
-        const bool revolute = body.joint.type == ir::JointType::kRevolute;
+      case ir::JointType::kPrismatic:
         c.rate_of[v0] = q0;
         c.velocity_columns.push_back(layout.velocity_names[v0] + "_dot");
-        c.position_units.push_back(revolute ? "rad" : "m");
-        c.velocity_units.push_back(revolute ? "rad/s" : "m/s");
         break;
-      }
       case ir::JointType::kFree:
       case ir::JointType::kSpherical: {
         const bool free = body.joint.type == ir::JointType::kFree;
         const int translations = free ? 3 : 0;
-        for (int k = 0; k < translations; ++k) {
-          c.rate_of[v0 + k] = q0 + k;
-          c.position_units.push_back("m");
-          c.velocity_units.push_back("m/s");
-        }
+        for (int k = 0; k < translations; ++k) c.rate_of[v0 + k] = q0 + k;
         const int quat = q0 + translations;
         c.quaternions.push_back(quat);
-        for (int k = 0; k < 4; ++k) c.position_units.push_back("1");
         for (int k = 0; k < 3; ++k) {
           c.rotation_of[v0 + translations + k] = quat;
           c.rotation_axis[v0 + translations + k] = k;
-          c.velocity_units.push_back("rad/s");
         }
         for (int k = 0; k < translations + 3; ++k) c.velocity_columns.push_back(layout.velocity_names[v0 + k]);
         break;

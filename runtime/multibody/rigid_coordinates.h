@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ir/model.h"
+#include "ir/quantity.h"
 
 namespace mbfe::runtime {
 
@@ -29,8 +30,10 @@ struct RigidCoordinates {
   /// v's: "<name>_dot" for a coordinate that is its own rate's, the layout's
   /// <body>_vx .. _wz for the velocities of spherical and free joints.
   std::vector<std::string> position_columns, velocity_columns;
-  /// Units: rad, m, "1" (a quaternion entry); rad/s, m/s.
-  std::vector<std::string> position_units, velocity_units;
+  /// What each entry of q and v measures (ir::CoordinateLayout's): the
+  /// columns' units are ir::si_unit(position_quantity[i]) and
+  /// ir::si_unit(velocity_quantity[i], 1).
+  std::vector<ir::Quantity> position_quantity, velocity_quantity;
   /// Per entry of v: the body it moves.
   std::vector<int> velocity_body;
 

@@ -27,18 +27,16 @@ class BeamRun final : public ModelRun {
     n_ = beams_.dof;
     const Eigen::VectorXd y_static = modal_static_state(beams_, adjusted_, *ode_);
     probes_ = resolve_probes(request.probes, model.ir(), beams_);
-    layout_.columns.push_back("t");
-    layout_.units.push_back("s");
+    add_column("t", ir::Quantity::kTime);
     if (probes_.empty()) {
       for (const BeamPart& b : beams_.beams)
         for (int f : b.system.free_dof) {
-          layout_.columns.push_back(b.system.name + (f % 2 == 0 ? "_w" : "_dw") + std::to_string(f / 2));
-          layout_.units.push_back(beam_coordinate_unit(f % 2 != 0));
+          const bool slope = f % 2 != 0;
+          add_column(b.system.name + (slope ? "_dw" : "_w") + std::to_string(f / 2), ir::beam_dof(slope));
         }
     } else {
       for (const BeamProbe& p : probes_) {
-        layout_.columns.push_back(p.label);
-        layout_.units.push_back(p.acceleration ? "m/s^2" : "m");
+        add_column(p.label, ir::Quantity::kLength, p.acceleration ? 2 : 0);
         any_acceleration_ = any_acceleration_ || p.acceleration;
       }
     }

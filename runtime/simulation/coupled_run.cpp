@@ -338,76 +338,44 @@ class CoupledRun final : public ModelRun {
       if (os.tellp() > 0) os << ", ";
       const std::string& name = names_.empty() ? dynamics_->model().coordinate_names()[i] : names_[i];
       os << name << " by " << std::showpos << moved << std::noshowpos;
-      const std::string unit = i < nb ? coordinate_unit(model_.ir().bodies[i]) : beam_coordinate_unit(is_slope(i));
+      const std::string unit = ir::si_unit(quantity(i));
       if (unit != "1") os << " " << unit;
     }
     return os.str();
   }
 
-  /// Coordinate i of [q_b; q_c], a beam's, is a slope.
-  bool is_slope(Eigen::Index i) const { return slopes_[static_cast<std::size_t>(i - dynamics_->nb())]; }
+  /// What coordinate i of [q_b; q_c] measures: a joint's angle or length,
+  /// a beam's deflection or slope.
+  ir::Quantity quantity(Eigen::Index i) const {
+    const int nb = dynamics_->nb();
+    return i < nb ? ir::joint_coordinate(model_.ir().bodies[i].joint.type)
+                  : ir::beam_dof(slopes_[static_cast<std::size_t>(i - nb)]);
+  }
 
   void build_layout() {
-    const int nb = dynamics_->nb(), n = dynamics_->n();
-    std::vector<std::string> positions, units, rate_units;
-    for (int i = 0; i < nb; ++i) {
-      positions.push_back(names_[i]);
-      units.push_back(coordinate_unit(model_.ir().bodies[i]));
-      rate_units.push_back(rate_unit(model_.ir().bodies[i]));
-    }
-    if (probes_.empty()) {
-      for (int i = nb; i < n; ++i) {
-        const bool slope = is_slope(i);
-        positions.push_back(names_[i]);
-        units.push_back(beam_coordinate_unit(slope));
-        rate_units.push_back(beam_rate_unit(slope));
-      }
-    } else {
-      for (const BeamProbe& p : probes_) {
-        if (p.acceleration) continue;  // at the end of the row
-        positions.push_back(p.label);
-        units.push_back(beam_coordinate_unit(false));
-        rate_units.push_back(beam_rate_unit(false));
-      }
-    }
-    layout_.columns.push_back("t");
-    layout_.units.push_back("s");
-    layout_.columns.insert(layout_.columns.end(), positions.begin(), positions.end());
-    layout_.units.insert(layout_.units.end(), units.begin(), units.end());
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-      layout_.columns.push_back(positions[i] + "_dot");
-      layout_.units.push_back(rate_units[i]);
-    }
-    for (const std::string& l : multiplier_names(model_.ir())) {
-      layout_.columns.push_back(l);
-      layout_.units.push_back("N");
-    }
-    layout_.columns.push_back("phi_abs");
-    layout_.units.push_back("m");
+    const int n = dynamics_->n();
+    // The positions written (the bodies', then every beam DOF or the
+    // displacement probes), each followed later by its rate.
+    std::vector<std::pair<std::string, ir::Quantity>> positions;
+    for (int i = 0; i < n; ++i)
+      if (i < dynamics_->nb() || probes_.empty()) positions.emplace_back(names_[i], quantity(i));
+    for (const BeamProbe& p : probes_)
+      if (!p.acceleration) positions.emplace_back(p.label, ir::Quantity::kLength);  // accelerations: at the end
+    add_column("t", ir::Quantity::kTime);
+    for (const auto& [name, quantity] : positions) add_column(name, quantity);
+    for (const auto& [name, quantity] : positions) add_column(name + "_dot", quantity, 1);
+    for (const std::string& l : multiplier_names(model_.ir())) add_column(l, ir::Quantity::kForce);
+    add_column("phi_abs", ir::Quantity::kLength);
     const CoupledModel& cm = dynamics_->model();
-    for (const SliderSpringForce* s : cm.slider_springs()) {
-      layout_.columns.push_back("force_" + s->name());
-      layout_.units.push_back("N");
-    }
-    for (const SliderSpringForce* s : cm.slider_springs()) {
-      layout_.columns.push_back("deflection_" + s->name());
-      layout_.units.push_back("m");
-    }
-    for (const LinkForce* l : cm.links()) {
-      layout_.columns.push_back("tension_" + l->name());
-      layout_.units.push_back("N");
-    }
-    for (int d : dynamics_->driven()) {
-      layout_.columns.push_back(model_.ir().bodies[d].name + "_drive");
-      layout_.units.push_back(model_.ir().bodies[d].joint.type == ir::JointType::kRevolute ? "N m" : "N");
-    }
-    // Acceleration probes last: a beam's (m/s^2) or a body coordinate's.
-    for (const BeamProbe& p : probes_) {
-      if (!p.acceleration) continue;
-      layout_.columns.push_back(p.label);
-      const bool angle = p.body >= 0 && model_.ir().bodies[p.body].joint.type == ir::JointType::kRevolute;
-      layout_.units.push_back(angle ? "rad/s^2" : "m/s^2");
-    }
+    for (const SliderSpringForce* s : cm.slider_springs()) add_column("force_" + s->name(), ir::Quantity::kForce);
+    for (const SliderSpringForce* s : cm.slider_springs())
+      add_column("deflection_" + s->name(), ir::Quantity::kLength);
+    for (const LinkForce* l : cm.links()) add_column("tension_" + l->name(), ir::Quantity::kForce);
+    for (int d : dynamics_->driven())
+      add_column(model_.ir().bodies[d].name + "_drive", ir::joint_reaction(model_.ir().bodies[d].joint.type));
+    // Acceleration probes last: a beam's or a body coordinate's.
+    for (const BeamProbe& p : probes_)
+      if (p.acceleration) add_column(p.label, p.body >= 0 ? quantity(p.body) : ir::Quantity::kLength, 2);
   }
 
   const AssembledModel& model_;

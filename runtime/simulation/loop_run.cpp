@@ -51,8 +51,8 @@ class LoopRun final : public ModelRun {
     // Velocities left at zero (not given) are completed from J v = nu without
     // a word; a velocity given and changed is announced.
     // A static start moves the positions on purpose: nothing to announce.
-    const std::string moved = static_start ? "" : moves(q0, q, c.position_columns, c.position_units, false);
-    const std::string moved_rates = moves(v0, v, c.velocity_columns, c.velocity_units, true);
+    const std::string moved = static_start ? "" : moves(q0, q, c.position_columns, c.position_quantity, 0, false);
+    const std::string moved_rates = moves(v0, v, c.velocity_columns, c.velocity_quantity, 1, true);
     if (!moved.empty() || !moved_rates.empty()) {
       std::string text = "the initial state does not close the loops and was projected onto them:";
       if (!moved.empty()) text += " positions: " + moved + ";";
@@ -60,22 +60,13 @@ class LoopRun final : public ModelRun {
       if (request.strict) throw InvalidInput(model.ir().source_path + ": " + text + " (strict)");
       notices_.push_back(text);
     }
-    layout_.columns.push_back("t");
-    layout_.units.push_back("s");
-    for (int i = 0; i < c.nq; ++i) {
-      layout_.columns.push_back(c.position_columns[i]);
-      layout_.units.push_back(c.position_units[i]);
-    }
-    for (int i = 0; i < c.nv; ++i) {
-      layout_.columns.push_back(c.velocity_columns[i]);
-      layout_.units.push_back(c.velocity_units[i]);
-    }
-    layout_.columns.push_back("loop_residual");
-    layout_.units.push_back("m");
+    add_column("t", ir::Quantity::kTime);
+    for (int i = 0; i < c.nq; ++i) add_column(c.position_columns[i], c.position_quantity[i]);
+    for (int i = 0; i < c.nv; ++i) add_column(c.velocity_columns[i], c.velocity_quantity[i], 1);
+    add_column("loop_residual", ir::Quantity::kLength);
     for (int d : system_->closure().driven_velocities()) {
       const ir::Body& body = model.ir().bodies[c.velocity_body[d]];
-      layout_.columns.push_back(body.name + "_drive");
-      layout_.units.push_back(body.joint.type == ir::JointType::kPrismatic ? "N" : "N m");
+      add_column(body.name + "_drive", ir::joint_reaction(body.joint.type));
     }
     variant_ = augmented ? "augmented formulation" : "partitioned formulation";
   }
@@ -120,8 +111,8 @@ class LoopRun final : public ModelRun {
  private:
   /// "coupler by -0.0012 rad, rod_qw by +1e-05": what the projection moved.
   static std::string moves(const Eigen::VectorXd& before, const Eigen::VectorXd& after,
-                           const std::vector<std::string>& names, const std::vector<std::string>& units,
-                           bool given_only) {
+                           const std::vector<std::string>& names, const std::vector<ir::Quantity>& quantities,
+                           int rate, bool given_only) {
     std::ostringstream os;
     os.precision(6);
     for (Eigen::Index i = 0; i < before.size(); ++i) {
@@ -130,7 +121,8 @@ class LoopRun final : public ModelRun {
       if (!(std::abs(moved) > kProjectionNoise * (1.0 + std::abs(before[i])))) continue;
       if (os.tellp() > 0) os << ", ";
       os << names[i] << " by " << std::showpos << moved << std::noshowpos;
-      if (units[i] != "1") os << " " << units[i];
+      const std::string unit = ir::si_unit(quantities[i], rate);
+      if (unit != "1") os << " " << unit;
     }
     return os.str();
   }

@@ -20,17 +20,4 @@ std::unique_ptr<ModelRun> make_model_run(const AssembledModel& model, const Simu
   throw InvalidInput("unknown kind of model");
 }
 
-const char* coordinate_unit(const ir::Body& body) {
-  return body.joint.type == ir::JointType::kRevolute ? "rad" : "m";
-}
-
-const char* rate_unit(const ir::Body& body) {
-  return body.joint.type == ir::JointType::kRevolute ? "rad/s" : "m/s";
-}
-
-// A slope w' = dw/ds is a length over a length: "1" (and "1/s" for its rate),
-// in every column, sidecar and message.
-const char* beam_coordinate_unit(bool slope) { return slope ? "1" : "m"; }
-const char* beam_rate_unit(bool slope) { return slope ? "1/s" : "m/s"; }
-
 }  // namespace mbfe::runtime::detail

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "ir/quantity.h"
 #include "runtime/integrators/ode_system.h"
 #include "runtime/integrators/simulation_driver.h"
 #include "runtime/simulation/assembled_model.h"
@@ -60,6 +61,13 @@ class ModelRun {
   virtual void set_beam_load(const std::string& beam, double s, std::function<double(double)> value);
 
  protected:
+  /// A column of the layout: its name, what it measures and which time
+  /// derivative of that (its unit follows, ir::si_unit).
+  void add_column(std::string name, ir::Quantity quantity, int rate = 0) {
+    layout_.columns.push_back(std::move(name));
+    layout_.units.push_back(ir::si_unit(quantity, rate));
+  }
+
   Eigen::VectorXd y0_;
   OutputLayout layout_;
   std::vector<std::string> notices_;
@@ -70,13 +78,6 @@ class ModelRun {
 /// The run `request` asks of `model`. @throws InvalidInput for a request this
 /// model cannot run.
 std::unique_ptr<ModelRun> make_model_run(const AssembledModel& model, const SimulationRequest& request);
-
-/// Units of a rigid coordinate and of its rate: rad, rad/s (revolute) or m, m/s (prismatic).
-const char* coordinate_unit(const ir::Body& body);
-const char* rate_unit(const ir::Body& body);
-/// Units of a beam coordinate (w: "m"; its slope w': "1") and of its rate.
-const char* beam_coordinate_unit(bool slope);
-const char* beam_rate_unit(bool slope);
 
 std::unique_ptr<ModelRun> make_rigid_run(const AssembledModel& model, const SimulationRequest& request);
 /// A model of bodies with closed loops (called by make_rigid_run).

@@ -35,16 +35,12 @@ class RigidRun final : public ModelRun {
       if (c.has_quaternions()) quaternion_static_state(model.ir(), system_, y0_);
       else rigid_static_state(model.ir(), system_, y0_);
     }
-    layout_.columns.push_back("t");
-    layout_.units.push_back("s");
-    for (int i = 0; i < c.nq + c.nv; ++i) {
-      layout_.columns.push_back(system_.name(i));
-      layout_.units.push_back(i < c.nq ? c.position_units[i] : c.velocity_units[i - c.nq]);
-    }
+    add_column("t", ir::Quantity::kTime);
+    for (int i = 0; i < c.nq; ++i) add_column(system_.name(i), c.position_quantity[i]);
+    for (int i = 0; i < c.nv; ++i) add_column(system_.name(c.nq + i), c.velocity_quantity[i], 1);
     for (int d : system_.driven()) {
       const ir::Body& body = model.ir().bodies[c.velocity_body[d]];
-      layout_.columns.push_back(body.name + "_drive");
-      layout_.units.push_back(body.joint.type == ir::JointType::kRevolute ? "N m" : "N");
+      add_column(body.name + "_drive", ir::joint_reaction(body.joint.type));
     }
   }
 

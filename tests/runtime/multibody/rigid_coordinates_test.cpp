@@ -98,6 +98,13 @@ void set_quat(std::vector<double>& q, int w, const Quat& value) {
   for (int k = 0; k < 4; ++k) q[w + k] = value[k];
 }
 
+// The columns' units of what the coordinates measure (their `rate`-th derivative).
+std::vector<std::string> units(const std::vector<ir::Quantity>& quantities, int rate) {
+  std::vector<std::string> out;
+  for (ir::Quantity q : quantities) out.push_back(ir::si_unit(q, rate));
+  return out;
+}
+
 // A state of every_joint with unit quaternions that are not the identity.
 std::vector<double> every_joint_state() {
   std::vector<double> q = {0.3, 0, 0, 0, 0, -0.7, 1.5, -2.0, 0.25, 0, 0, 0, 0};
@@ -123,10 +130,10 @@ TEST(RigidCoordinates, LayoutOfEveryJointTypeIsTheHandWrittenOne) {
   EXPECT_EQ(c.velocity_columns,
             (std::vector<std::string>{"crank_dot", "ball_wx", "ball_wy", "ball_wz", "slider_dot", "float_vx",
                                       "float_vy", "float_vz", "float_wx", "float_wy", "float_wz"}));
-  EXPECT_EQ(c.position_units,
+  EXPECT_EQ(units(c.position_quantity, 0),
             (std::vector<std::string>{"rad", "1", "1", "1", "1", "m", "m", "m", "m", "1", "1", "1", "1"}));
-  EXPECT_EQ(c.velocity_units, (std::vector<std::string>{"rad/s", "rad/s", "rad/s", "rad/s", "m/s", "m/s", "m/s", "m/s",
-                                                        "rad/s", "rad/s", "rad/s"}));
+  EXPECT_EQ(units(c.velocity_quantity, 1), (std::vector<std::string>{"rad/s", "rad/s", "rad/s", "rad/s", "m/s", "m/s",
+                                                                     "m/s", "m/s", "rad/s", "rad/s", "rad/s"}));
   EXPECT_EQ(c.velocity_body, (std::vector<int>{0, 1, 1, 1, 2, 3, 3, 3, 3, 3, 3}));
 }
 
@@ -140,8 +147,8 @@ TEST(RigidCoordinates, APlanarModelIsOneCoordinateOfEachPerBodyAndDisplacesByAdd
   EXPECT_FALSE(c.has_quaternions());
   EXPECT_EQ(c.rate_of, (std::vector<int>{0, 1}));
   EXPECT_EQ(c.velocity_columns, (std::vector<std::string>{"arm_dot", "carriage_dot"}));
-  EXPECT_EQ(c.position_units, (std::vector<std::string>{"rad", "m"}));
-  EXPECT_EQ(c.velocity_units, (std::vector<std::string>{"rad/s", "m/s"}));
+  EXPECT_EQ(units(c.position_quantity, 0), (std::vector<std::string>{"rad", "m"}));
+  EXPECT_EQ(units(c.velocity_quantity, 1), (std::vector<std::string>{"rad/s", "m/s"}));
   double q[2] = {0.75, -2.5};
   displace(c, q, Eigen::Vector2d(0.125, 0.5));
   EXPECT_EQ(q[0], 0.875);  // sums exact in binary
