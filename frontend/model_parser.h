@@ -159,8 +159,10 @@ class ModelParser {
   void parse_initial(const MapView& view);
 
   /// `{body_name: value, ...}` into one value per coordinate, model order:
-  /// `velocities` picks v (else q). A spherical or free joint takes a list.
-  void parse_coordinates(const MapView& view, std::vector<double>& values, bool velocities) const;
+  /// `velocities` picks v (else q). A spherical or free joint takes a list; a
+  /// quaternion is stored scaled to unit length (initial.scaled_quaternions
+  /// says which were not).
+  void parse_coordinates(const MapView& view, std::vector<double>& values, bool velocities);
 
   void parse_simulation(const MapView& view);
 

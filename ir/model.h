@@ -335,6 +335,15 @@ struct Initial {
   std::vector<double> qd;  // one per velocity coordinate (planar: one per body)
   bool static_start = false;  // `static: true`: static equilibrium at t = 0
   SourceLoc loc;
+  /// Quaternions of `q` that the file gave off unit length (q holds them
+  /// scaled to unit): the body, the norm given and where, for the notice a
+  /// run prints (and `--strict` refuses).
+  struct ScaledQuaternion {
+    std::string body;
+    double norm = 1.0;
+    SourceLoc loc;
+  };
+  std::vector<ScaledQuaternion> scaled_quaternions;
 };
 
 struct Simulation {

@@ -90,12 +90,13 @@ Options:
                      their name: (loads.front_susp.stiffness=2e6,
                      beams.bridge.section.inertia=0.3); errors point into the
                      file and name the --set
-  --strict           an initial state that violates the contacts is an error
-                     (exit 2) instead of being projected onto them; so is a
-                     body that fell through space (no contact of it touched a
-                     beam and it ended farther from the beams than the
-                     structure's size; docs/robustness.md), after the run,
-                     its rows kept
+  --strict           an initial state that violates the contacts or the loops
+                     is an error (exit 2) instead of being projected onto
+                     them; so is an initial.q quaternion off unit length
+                     (instead of being scaled to it), and a body that fell
+                     through space (no contact of it touched a beam and it
+                     ended farther from the beams than the structure's size;
+                     docs/robustness.md), after the run, its rows kept
   --quiet            no progress or cache messages on stderr
 
 An output (--out, its sidecar, the --vtk folder and its files) that is the

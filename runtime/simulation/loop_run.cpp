@@ -25,6 +25,7 @@ class LoopRun final : public ModelRun {
   LoopRun(const AssembledModel& model, const SimulationRequest& request) : model_(model) {
     const RigidCoordinates& c = model.coordinates();
     const bool augmented = request.formulation == CoupledFormulation::kAugmented;
+    announce_scaled_quaternions(model.ir(), request.strict, notices_);
     try {
       if (augmented) system_ = std::make_unique<LoopAugmentedSystem>(*model.kernels(), model.bodies(), c);
       else system_ = std::make_unique<LoopPartitionedSystem>(*model.kernels(), model.bodies(), c);

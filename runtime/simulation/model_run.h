@@ -79,6 +79,11 @@ class ModelRun {
 /// model cannot run.
 std::unique_ptr<ModelRun> make_model_run(const AssembledModel& model, const SimulationRequest& request);
 
+/// A notice per quaternion of the file's initial.q given off unit length
+/// (the parser scaled it): into `notices`, or with `strict` an InvalidInput
+/// (file:line:col) at the first.
+void announce_scaled_quaternions(const ir::Model& model, bool strict, std::vector<std::string>& notices);
+
 std::unique_ptr<ModelRun> make_rigid_run(const AssembledModel& model, const SimulationRequest& request);
 /// A model of bodies with closed loops (called by make_rigid_run).
 std::unique_ptr<ModelRun> make_loop_run(const AssembledModel& model, const SimulationRequest& request);

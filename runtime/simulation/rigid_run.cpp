@@ -2,6 +2,8 @@
 #include <string>
 
 #include "runtime/errors/invalid_input.h"
+#include "runtime/multibody/quaternion_check.h"
+#include "runtime/multibody/rigid_coordinates.h"
 #include "runtime/multibody/rigid_system.h"
 #include "runtime/simulation/model_run.h"
 #include "runtime/simulation/static_start.h"
@@ -9,10 +11,6 @@
 namespace mbfe::runtime::detail {
 
 namespace {
-
-// An initial quaternion off unit length by more than this was not meant so:
-// say that it was scaled.
-constexpr double kUnitQuaternionNoise = 1e-12;
 
 class RigidRun final : public ModelRun {
  public:
@@ -23,12 +21,19 @@ class RigidRun final : public ModelRun {
     model.initial_coordinates(q0, qd0);
     y0_.resize(c.nq + c.nv);
     y0_ << q0, qd0;
+    announce_scaled_quaternions(model.ir(), request.strict, notices_);
     if (c.has_quaternions()) {
+      // The file's are unit already (and announced above); a model built by
+      // a program may not be. Off by more than the file's may be, it was not
+      // meant so: say that it was scaled.
       const double error = quaternion_norm_error(c, y0_.data());
       normalize_quaternions(c, y0_.data());
-      if (error > kUnitQuaternionNoise)
-        notices_.push_back("the initial quaternions were scaled to unit length (the largest was off by " +
-                           std::to_string(error) + ")");
+      if (error > kUnitQuaternionTol) {
+        const std::string text =
+            "the initial quaternions were scaled to unit length (the largest was off by " + std::to_string(error) + ")";
+        if (request.strict) throw InvalidInput(model.ir().source_path + ": " + text + " (strict)");
+        notices_.push_back(text);
+      }
     }
     system_.impose_motion(0.0, y0_);
     if (request.static_start.value_or(model.ir().initial.static_start)) {

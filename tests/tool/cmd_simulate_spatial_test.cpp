@@ -49,5 +49,28 @@ TEST(SimulateSpatial, AFormulationForATreeIsRefused) {
   }
 }
 
+TEST(SimulateSpatial, AnInitialQuaternionOffUnitLengthIsScaledAndSaidSo) {
+  // A ball-jointed pendulum whose initial quaternion is written (2, 0, 0, 0):
+  // the identity, twice too long. It is scaled (a run as from the unit one)
+  // and said on stderr; --strict refuses it at the list (line 6, column 20).
+  const test::TempDir dir;
+  const std::string path = (dir / "ball.yaml").string();
+  std::ofstream(path) << "model: ball\ndimension: 3\ngravity: [0, 0, -9.81]\nbodies:\n"
+                         "  - {name: bob, parent: ground, joint: {type: spherical}, mass: 1, "
+                         "inertia: [0.01, 0.01, 0.01, 0, 0, 0], com: [0, 0, -0.5]}\n"
+                         "initial: {q: {bob: [2, 0, 0, 0]}}\n";
+  const test::CliRun r = test::run_cli("simulate " + path + " --t-end 0.01 --out /dev/null");
+  ASSERT_EQ(r.status, 0) << r.all();
+  EXPECT_NE(r.err.find("initial.q.bob: the quaternion has norm 2, not 1, and was scaled to unit length"),
+            std::string::npos)
+      << r.err;
+  const test::CliRun strict = test::run_cli("simulate " + path + " --t-end 0.01 --strict --out /dev/null");
+  EXPECT_EQ(strict.status, 2) << strict.all();
+  EXPECT_NE(strict.err.find("ball.yaml:6:20: initial.q.bob: the quaternion has norm 2, not 1, and was scaled to unit "
+                            "length (strict: write a unit quaternion"),
+            std::string::npos)
+      << strict.err;
+}
+
 }  // namespace
 }  // namespace mbfe
