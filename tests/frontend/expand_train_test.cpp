@@ -14,6 +14,7 @@
 
 #include "frontend/hslm_trains.h"
 #include "frontend/parse_model.h"
+#include "tests/support/model_error.h"
 
 namespace mbfe::frontend {
 using namespace mbfe::ir;
@@ -25,14 +26,7 @@ constexpr double kPositionTol = 1e-12;
 // products and quotients, against the same numbers by hand: round-off.
 constexpr double kMassRoundOff = 1e-9;
 
-std::string error_of(const std::string& text) {
-  try {
-    parse_model_text(text, "models/x.yaml");
-  } catch (const ModelError& error) {
-    return error.what();
-  }
-  return "(accepted)";
-}
+std::string error_of(const std::string& text) { return test::model_error_of(text); }
 
 /// An HSLM-A train built from EN 1991-2:2003 Figure 6.12 the other way round:
 /// the front half (power car, end coach's own bogie), the articulated

@@ -13,6 +13,7 @@
 #include "frontend/parse_model.h"
 #include "frontend/parse_sweep.h"
 #include "tests/support/process.h"
+#include "tests/support/model_error.h"
 
 namespace mbfe::frontend {
 using namespace mbfe::ir;
@@ -51,12 +52,7 @@ std::string edited(std::string text, const std::string& from, const std::string&
 }
 
 std::string error_of(const std::string& text, const ModelOverrides& overrides) {
-  try {
-    parse_model_text(text, "m.yaml", {}, overrides);
-  } catch (const ModelError& error) {
-    return error.what();
-  }
-  return "(accepted)";
+  return test::model_error_of(text, "m.yaml", {}, overrides);
 }
 
 TEST(ModelOverrideValues, AListValueReplacesAListAndAnIndexReachesOneItem) {

@@ -10,6 +10,7 @@
 #include "frontend/parse_model.h"
 #include "frontend/parse_sweep.h"
 #include "frontend/sha256.h"
+#include "tests/support/model_error.h"
 
 namespace mbfe::frontend {
 using namespace mbfe::ir;
@@ -47,12 +48,7 @@ std::string model_text(const std::string& stiffness = "2.0e6", const std::string
 }
 
 std::string error_of(const std::string& text, const ModelOverrides& overrides) {
-  try {
-    parse_model_text(text, "bridge.yaml", {}, overrides);
-  } catch (const ModelError& error) {
-    return error.what();
-  }
-  return "(accepted)";
+  return test::model_error_of(text, "bridge.yaml", {}, overrides);
 }
 
 TEST(ModelOverrides, AnOverriddenFileIsTheEditedFile) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "frontend/parse_model.h"
+#include "tests/support/model_error.h"
 
 namespace mbfe::frontend {
 using namespace mbfe::ir;
@@ -14,14 +15,7 @@ namespace {
 
 constexpr double kUlpTol = 1e-15;  // an axis divided by its length
 
-std::string error_of(const std::string& text) {
-  try {
-    parse_model_text(text, "models/x.yaml");
-  } catch (const ModelError& error) {
-    return error.what();
-  }
-  return "(accepted)";
-}
+std::string error_of(const std::string& text) { return test::model_error_of(text); }
 
 constexpr const char* kFourBar = R"(model: four_bar
 bodies:

@@ -8,6 +8,7 @@
 
 #include "frontend/parse_model.h"
 #include "ir/coordinate_layout.h"
+#include "tests/support/model_error.h"
 
 namespace mbfe::frontend {
 using namespace mbfe::ir;
@@ -16,14 +17,7 @@ namespace {
 // Normalising an axis divides by a square root: a few ulps.
 constexpr double kUlpTol = 1e-15;
 
-std::string error_of(const std::string& text) {
-  try {
-    parse_model_text(text, "models/x.yaml");
-  } catch (const ModelError& error) {
-    return error.what();
-  }
-  return "(accepted)";
-}
+std::string error_of(const std::string& text) { return test::model_error_of(text); }
 
 constexpr const char* kArm = R"yaml(model: arm
 dimension: 3
