@@ -77,7 +77,7 @@ ModelSpectrum settled_or_start(ModelSpectrum at_start, const std::function<bool(
 ModelSpectrum loop_spectrum(const AssembledModel& model, Eigen::VectorXd q, Eigen::VectorXd v, bool static_start) {
   std::unique_ptr<LoopPartitionedSystem> system;
   try {
-    system = std::make_unique<LoopPartitionedSystem>(*model.kernels(), model.bodies(), model.coordinates());
+    system = std::make_unique<LoopPartitionedSystem>(*model.kernels(), model.bodies(), model.coordinates(), q.data());
   } catch (const std::invalid_argument& e) {
     throw InvalidInput(model.ir().source_path + ": " + e.what());
   }

@@ -21,17 +21,24 @@ double smallest_singular_value(const Eigen::MatrixXd& a) {
 
 }  // namespace
 
-LoopClosure::LoopClosure(const mbfe_model_v1& model, RigidCoordinates coordinates)
-    : model_(model),
-      coordinates_(std::move(coordinates)),
-      nl_(model.num_loop_rows),
-      nc_(model.num_loop_rows + model.num_driven),
-      nv_(coordinates_.nv) {
+LoopClosure::LoopClosure(const mbfe_model_v1& model, RigidCoordinates coordinates, const double* rows_at)
+    : model_(model), coordinates_(std::move(coordinates)), nl_(model.num_loop_rows), nv_(coordinates_.nv) {
   if (nl_ <= 0 || !model.loop_constraints || !model.loop_jacobian || !model.loop_gamma)
     throw std::invalid_argument(std::string("model '") + model.model_name + "' has no loop kernels");
+  if (model.num_driven > 0 && model.motion == nullptr)
+    throw std::invalid_argument(std::string("model '") + model.model_name + "' has driven joints but no motion kernel");
+  for (int k = 0; k < model.num_driven; ++k) {
+    drive_v_.push_back(model.driven_coordinates[k]);
+    drive_q_.push_back(model.driven_positions ? model.driven_positions[k] : drive_v_.back());
+  }
+  for (int r = 0; r < nl_; ++r) rows_.push_back(r);
+  if (rows_at) select_rows(rows_at);
+  na_ = static_cast<int>(rows_.size());
+  nc_ = na_ + model.num_driven;
   if (nc_ > nv_) {
     std::ostringstream os;
-    os << "model '" << model.model_name << "': its loops have " << nl_ << " constraint rows";
+    os << "model '" << model.model_name << "': its loops have " << na_ << " constraint rows";
+    if (!redundant_.empty()) os << " (and " << redundant_.size() << " that repeat them)";
     if (model.num_driven > 0) os << " and its driven joints " << model.num_driven;
     os << " but the tree only " << nv_
        << " velocity coordinates; some loops are redundant (remove them or use a point loop where a revolute one "
@@ -39,69 +46,87 @@ LoopClosure::LoopClosure(const mbfe_model_v1& model, RigidCoordinates coordinate
     if (model.num_driven > 0) os << " or the drives fix what the loops already fix";
     throw std::invalid_argument(os.str());
   }
-  if (model.num_driven > 0 && model.motion == nullptr)
-    throw std::invalid_argument(std::string("model '") + model.model_name + "' has driven joints but no motion kernel");
-  row_loop_.assign(nc_, "?");
-  row_what_.assign(nc_, "loop '?'");
-  for (int k = 0; k < model.num_loops; ++k) {
-    const mbfe_loop_constraint_v1& loop = model.loops[k];
-    for (int r = loop.first_row; r < loop.first_row + loop.rows && r < nl_; ++r) {
-      row_loop_[r] = loop.name;
-      row_what_[r] = std::string("loop '") + loop.name + "'";
-    }
+  const auto loop_of_row = [&](int r) -> std::string {
+    for (int k = 0; k < model.num_loops; ++k)
+      if (r >= model.loops[k].first_row && r < model.loops[k].first_row + model.loops[k].rows) return model.loops[k].name;
+    return "?";
+  };
+  for (int r : rows_) {
+    row_loop_.push_back(loop_of_row(r));
+    row_what_.push_back("loop '" + row_loop_.back() + "'");
   }
+  for (int r : redundant_) redundant_loops_.push_back(loop_of_row(r));
   for (int k = 0; k < model.num_driven; ++k) {
-    const int v = model.driven_coordinates[k];
-    drive_v_.push_back(v);
-    drive_q_.push_back(model.driven_positions ? model.driven_positions[k] : v);
-    const std::string& name = coordinates_.position_columns[drive_q_.back()];
-    row_loop_[nl_ + k] = name;
-    row_what_[nl_ + k] = "the motion of '" + name + "'";
+    const std::string& name = coordinates_.position_columns[drive_q_[k]];
+    row_loop_.push_back(name);
+    row_what_.push_back("the motion of '" + name + "'");
   }
   motion_q_.resize(model.num_driven);
   motion_qd_.resize(model.num_driven);
   motion_qdd_.resize(model.num_driven);
+  full_phi_.resize(nl_);
+  full_j_.resize(nl_, nv_);
+}
+
+void LoopClosure::select_rows(const double* q) {
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jl(nl_, nv_);
+  model_.loop_jacobian(q, jl.data());
+  if (!jl.allFinite()) return;  // the run's own checks say what is wrong with q
+  // The loops' rows as columns: their rank among themselves. The drives are
+  // not in it: a drive that repeats a loop is an error of the model (below),
+  // not a row to leave out.
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Eigen::MatrixXd(jl.transpose()));
+  qr.setThreshold(kRedundantRow);
+  const Eigen::Index rank = qr.rank();
+  // Rank limited by the velocities, not by small pivots: rows that fix more
+  // than the tree can move, refused as such, not left out.
+  if (rank == nl_ || rank == nv_) return;
+  std::vector<bool> kept(static_cast<std::size_t>(nl_), false);
+  for (Eigen::Index i = 0; i < rank; ++i) kept[static_cast<std::size_t>(qr.colsPermutation().indices()[i])] = true;
+  rows_.clear();
+  for (int r = 0; r < nl_; ++r) (kept[static_cast<std::size_t>(r)] ? rows_ : redundant_).push_back(r);
 }
 
 void LoopClosure::motion(double t) const {
-  if (nc_ > nl_) model_.motion(t, motion_q_.data(), motion_qd_.data(), motion_qdd_.data());
+  if (nc_ > na_) model_.motion(t, motion_q_.data(), motion_qd_.data(), motion_qdd_.data());
 }
 
 void LoopClosure::phi(const double* q, double t, Eigen::VectorXd& out) const {
   out.resize(nc_);
-  model_.loop_constraints(q, out.data());
-  if (nc_ == nl_) return;
+  model_.loop_constraints(q, full_phi_.data());
+  for (int i = 0; i < na_; ++i) out[i] = full_phi_[rows_[i]];
+  if (nc_ == na_) return;
   motion(t);
-  for (int k = 0; k < nc_ - nl_; ++k) out[nl_ + k] = q[drive_q_[k]] - motion_q_[k];
+  for (int k = 0; k < nc_ - na_; ++k) out[na_ + k] = q[drive_q_[k]] - motion_q_[k];
 }
 
 void LoopClosure::jacobian(const double* q, Eigen::MatrixXd& out) const {
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> row_major(nl_, nv_);
-  model_.loop_jacobian(q, row_major.data());
+  model_.loop_jacobian(q, full_j_.data());
   out.setZero(nc_, nv_);
-  out.topRows(nl_) = row_major;
-  for (int k = 0; k < nc_ - nl_; ++k) out(nl_ + k, drive_v_[k]) = 1.0;
+  for (int i = 0; i < na_; ++i) out.row(i) = full_j_.row(rows_[i]);
+  for (int k = 0; k < nc_ - na_; ++k) out(na_ + k, drive_v_[k]) = 1.0;
 }
 
 void LoopClosure::gamma(const double* q, const double* v, double t, Eigen::VectorXd& out) const {
   out.resize(nc_);
-  model_.loop_gamma(q, v, out.data());
-  if (nc_ == nl_) return;
+  model_.loop_gamma(q, v, full_phi_.data());
+  for (int i = 0; i < na_; ++i) out[i] = full_phi_[rows_[i]];
+  if (nc_ == na_) return;
   motion(t);
-  out.tail(nc_ - nl_) = motion_qdd_;
+  out.tail(nc_ - na_) = motion_qdd_;
 }
 
 void LoopClosure::velocity_target(double t, Eigen::VectorXd& out) const {
   out.setZero(nc_);
-  if (nc_ == nl_) return;
+  if (nc_ == na_) return;
   motion(t);
-  out.tail(nc_ - nl_) = motion_qd_;
+  out.tail(nc_ - na_) = motion_qd_;
 }
 
 void LoopClosure::impose_motion(double t, double* q, double* v) const {
-  if (nc_ == nl_) return;
+  if (nc_ == na_) return;
   motion(t);
-  for (int k = 0; k < nc_ - nl_; ++k) {
+  for (int k = 0; k < nc_ - na_; ++k) {
     q[drive_q_[k]] = motion_q_[k];
     v[drive_v_[k]] = motion_qd_[k];
   }
@@ -169,7 +194,7 @@ int LoopClosure::close(double* q, const std::vector<int>& dependent, double t) c
     if (r <= kClosureTol || (r <= kStagnationTol && r > 0.5 * last)) {
       // A drive's row is linear in its coordinate: its exact root costs the
       // loops' rows round-off only, and the output shows the motion's value.
-      for (int k = 0; k < nc_ - nl_; ++k) q[drive_q_[k]] = motion_q_[k];
+      for (int k = 0; k < nc_ - na_; ++k) q[drive_q_[k]] = motion_q_[k];
       return it;
     }
     last = r;
@@ -195,7 +220,7 @@ int LoopClosure::project(double* q, double t) const {
     if (r <= kClosureTol || (r <= kStagnationTol && r > 0.5 * last)) {
       // A drive's row is linear in its coordinate: its exact root costs the
       // loops' rows round-off only, and the output shows the motion's value.
-      for (int k = 0; k < nc_ - nl_; ++k) q[drive_q_[k]] = motion_q_[k];
+      for (int k = 0; k < nc_ - na_; ++k) q[drive_q_[k]] = motion_q_[k];
       return it;
     }
     last = r;

@@ -5,6 +5,12 @@
 // closure of Phi by moving either the dependent coordinates only or all of
 // them by the least-norm step (docs/partitioning.md, "Closed loops").
 //
+// A loop row that repeats the conditions of the others (a spatial revolute
+// loop closing a linkage whose joint axes are all parallel: its rows out of
+// the plane vanish) is found at the configuration the closure is built at, by
+// a column-pivoted QR of the rows, and left out: the closure works with the
+// independent rows only, and residual() still measures every row.
+//
 // Driven joints (`motion:`) are driving constraints, one row each after the
 // loops' rows: q_d - motion(t) = 0, a unit row of J, J v = motion'(t) at
 // velocity level and gamma = motion''(t) at acceleration level. Their
@@ -31,14 +37,20 @@ struct LoopPartition {
 class LoopClosure {
  public:
   /// @param model a solver with loop kernels (num_loop_rows > 0); must outlive this.
+  /// @param rows_at a configuration (nq) at which the loop rows that repeat
+  ///        the others are found and left out; null keeps every row.
   /// @throws std::invalid_argument if it has no loops or more rows (loops'
   ///         and drives') than velocities.
-  LoopClosure(const mbfe_model_v1& model, RigidCoordinates coordinates);
+  LoopClosure(const mbfe_model_v1& model, RigidCoordinates coordinates, const double* rows_at = nullptr);
 
-  /// Every row: the loops' and then one per driven joint.
+  /// Every row used: the loops' independent rows and then one per driven joint.
   int rows() const { return nc_; }
-  int loop_rows() const { return nl_; }
-  int driven_rows() const { return nc_ - nl_; }
+  int loop_rows() const { return na_; }
+  int driven_rows() const { return nc_ - na_; }
+  /// The loop rows left out as repeating the others (indices into the
+  /// kernels' rows), and the loop of each.
+  const std::vector<int>& redundant_rows() const { return redundant_; }
+  const std::vector<std::string>& redundant_row_loops() const { return redundant_loops_; }
   const RigidCoordinates& coordinates() const { return coordinates_; }
   /// Per driven joint, model order: its entry of v (its entry of q is
   /// the model's driven_positions).
@@ -90,19 +102,33 @@ class LoopClosure {
   /// J_d is singular when sigma_min(J_d) < kSingularLoops ||J||_F (double
   /// precision with a margin of ~1e3 ulps, as for contacts).
   static constexpr double kSingularLoops = 1e-13;
+  /// A loop row repeats the others when its pivot in the QR of the rows is
+  /// below this fraction of the largest: a structural repetition leaves
+  /// round-off (~1e-16), a linkage near (not at) a dead point far more.
+  static constexpr double kRedundantRow = 1e-9;
 
  private:
   [[noreturn]] void fail(const Eigen::VectorXd& phi, double t, int iterations) const;
+  /// rows_ and redundant_ from the rows of J at q (see the header comment).
+  void select_rows(const double* q);
   /// The motion at t into the scratch below.
   void motion(double t) const;
 
   const mbfe_model_v1& model_;
   RigidCoordinates coordinates_;
-  int nl_, nc_, nv_;
+  int nl_;      // the kernels' loop rows
+  int na_ = 0;  // of them used (rows_)
+  int nc_ = 0;  // used rows with the drives'
+  int nv_;
+  std::vector<int> rows_;       // the loop rows used, ascending
+  std::vector<int> redundant_;  // the loop rows left out, ascending
+  std::vector<std::string> redundant_loops_;
   std::vector<int> drive_v_, drive_q_;  // per driven joint: its entry of v, of q
   std::vector<std::string> row_loop_;   // per row: its loop's name, or the driven body's
   std::vector<std::string> row_what_;   // per row: "loop 'name'" or "the motion of 'body'"
   mutable Eigen::VectorXd motion_q_, motion_qd_, motion_qdd_;
+  mutable Eigen::VectorXd full_phi_;  // every loop row, before the selection
+  mutable Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> full_j_;
 };
 
 }  // namespace mbfe::runtime

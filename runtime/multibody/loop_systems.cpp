@@ -22,10 +22,11 @@ constexpr double kSaddleRcondFloor = 1e-13;
 
 }  // namespace
 
-LoopSystem::LoopSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies, RigidCoordinates coordinates)
+LoopSystem::LoopSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies, RigidCoordinates coordinates,
+                       const double* rows_at)
     : model_(model),
       bodies_(std::move(bodies)),
-      closure_(model, std::move(coordinates)),
+      closure_(model, std::move(coordinates), rows_at),
       nq_(closure_.coordinates().nq),
       nv_(closure_.coordinates().nv),
       nc_(closure_.rows()) {
@@ -75,8 +76,8 @@ void LoopSystem::make_consistent(double t, Eigen::VectorXd& q, Eigen::VectorXd& 
 // ---- Partitioned ----
 
 LoopPartitionedSystem::LoopPartitionedSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies,
-                                             RigidCoordinates coordinates)
-    : LoopSystem(model, std::move(bodies), std::move(coordinates)) {
+                                             RigidCoordinates coordinates, const double* rows_at)
+    : LoopSystem(model, std::move(bodies), std::move(coordinates), rows_at) {
   // Until state_of() chooses at the initial state: the last nc coordinates.
   for (int i = 0; i < nv_; ++i) (i < nv_ - nc_ ? part_.independent : part_.dependent).push_back(i);
   llt_.compute(Eigen::MatrixXd::Identity(nv_ - nc_, nv_ - nc_));
@@ -186,8 +187,8 @@ void LoopPartitionedSystem::full_state(double t, const Eigen::VectorXd& y, Eigen
 // ---- Augmented ----
 
 LoopAugmentedSystem::LoopAugmentedSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies,
-                                         RigidCoordinates coordinates)
-    : LoopSystem(model, std::move(bodies), std::move(coordinates)) {
+                                         RigidCoordinates coordinates, const double* rows_at)
+    : LoopSystem(model, std::move(bodies), std::move(coordinates), rows_at) {
   saddle_.resize(nv_ + nc_, nv_ + nc_);
   rhs_.resize(nv_ + nc_);
 }

@@ -39,8 +39,11 @@ namespace mbfe::runtime {
 class LoopSystem : public OdeSystem {
  public:
   /// @param model a solver with loop kernels; must outlive this object.
+  /// @param rows_at where the loop rows that repeat the others are found
+  ///        (LoopClosure); null keeps every row.
   /// @throws std::invalid_argument as LoopClosure.
-  LoopSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies, RigidCoordinates coordinates);
+  LoopSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies, RigidCoordinates coordinates,
+             const double* rows_at = nullptr);
 
   const LoopClosure& closure() const { return closure_; }
   int num_coordinates() const { return nq_; }
@@ -80,7 +83,8 @@ class LoopSystem : public OdeSystem {
 
 class LoopPartitionedSystem final : public LoopSystem {
  public:
-  LoopPartitionedSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies, RigidCoordinates coordinates);
+  LoopPartitionedSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies, RigidCoordinates coordinates,
+                        const double* rows_at = nullptr);
 
   int size() const override { return nq_ + nv_ - nc_; }
   /// @throws NewtonClosureError, SingularConstraintError, SingularMassMatrixError.
@@ -113,7 +117,8 @@ class LoopPartitionedSystem final : public LoopSystem {
 
 class LoopAugmentedSystem final : public LoopSystem {
  public:
-  LoopAugmentedSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies, RigidCoordinates coordinates);
+  LoopAugmentedSystem(const mbfe_model_v1& model, std::vector<BodyInertia> bodies, RigidCoordinates coordinates,
+                      const double* rows_at = nullptr);
 
   int size() const override { return nq_ + nv_; }
   /// @throws SingularConstraintError, SingularMassMatrixError.

@@ -20,20 +20,40 @@ namespace {
 // A projected coordinate that moved less than this (relative) moved by round-off.
 constexpr double kProjectionNoise = 1e-12;
 
+// "3 rows of loop 'coupler_rocker' repeat ...": the rows the closure left out
+// (LoopClosure), loop by loop in file order; empty when none.
+std::string redundant_rows_notice(const LoopClosure& closure) {
+  std::vector<std::pair<std::string, int>> per_loop;
+  for (const std::string& loop : closure.redundant_row_loops()) {
+    if (per_loop.empty() || per_loop.back().first != loop) per_loop.emplace_back(loop, 0);
+    ++per_loop.back().second;
+  }
+  std::string text;
+  for (const auto& [loop, rows] : per_loop)
+    text += (text.empty() ? "" : "; ") + std::to_string(rows) + (rows == 1 ? " row" : " rows") + " of loop '" + loop +
+            "' repeat" + (rows == 1 ? "s" : "") + " the conditions of the others";
+  if (text.empty()) return text;
+  return text + " at the initial state (as when every joint axis of a linkage is parallel) and " +
+         (closure.redundant_rows().size() == 1 ? "is" : "are") +
+         " left out of the closure; loop_residual still measures every row";
+}
+
 class LoopRun final : public ModelRun {
  public:
   LoopRun(const AssembledModel& model, const SimulationRequest& request) : model_(model) {
     const RigidCoordinates& c = model.coordinates();
     const bool augmented = request.formulation == CoupledFormulation::kAugmented;
     announce_scaled_quaternions(model.ir(), request.strict, notices_);
+    Eigen::VectorXd q0, v0;
+    model.initial_coordinates(q0, v0);
+    // Loop rows that repeat the others are found at the initial state, as given.
     try {
-      if (augmented) system_ = std::make_unique<LoopAugmentedSystem>(*model.kernels(), model.bodies(), c);
-      else system_ = std::make_unique<LoopPartitionedSystem>(*model.kernels(), model.bodies(), c);
+      if (augmented) system_ = std::make_unique<LoopAugmentedSystem>(*model.kernels(), model.bodies(), c, q0.data());
+      else system_ = std::make_unique<LoopPartitionedSystem>(*model.kernels(), model.bodies(), c, q0.data());
     } catch (const std::invalid_argument& e) {
       throw InvalidInput(model.ir().source_path + ": " + e.what());
     }
-    Eigen::VectorXd q0, v0;
-    model.initial_coordinates(q0, v0);
+    if (const std::string text = redundant_rows_notice(system_->closure()); !text.empty()) notices_.push_back(text);
     system_->closure().impose_motion(0.0, q0.data(), v0.data());  // the motion fixes them: nothing to announce
     Eigen::VectorXd q = q0, v = v0;
     const bool static_start = request.static_start.value_or(model.ir().initial.static_start);
@@ -41,7 +61,7 @@ class LoopRun final : public ModelRun {
       system_->make_consistent(0.0, q, v);
       if (static_start) {
         // Found by the partitioned system whatever the formulation run.
-        LoopPartitionedSystem partitioned(*model.kernels(), model.bodies(), c);
+        LoopPartitionedSystem partitioned(*model.kernels(), model.bodies(), c, q0.data());
         loop_static_state(model.ir(), partitioned, q, v);
         v0.setZero();  // the velocities are the equilibrium's: nothing to announce
       }
