@@ -6,6 +6,8 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "runtime/errors/multibody_errors.h"
 
@@ -68,15 +70,28 @@ LoopClosure::LoopClosure(const mbfe_model_v1& model, RigidCoordinates coordinate
   full_j_.resize(nl_, nv_);
 }
 
-void LoopClosure::select_rows(const double* q) {
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jl(nl_, nv_);
-  model_.loop_jacobian(q, jl.data());
-  if (!jl.allFinite()) return;  // the run's own checks say what is wrong with q
-  // The loops' rows as columns: their rank among themselves. The drives are
-  // not in it: a drive that repeats a loop is an error of the model (below),
-  // not a row to leave out.
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Eigen::MatrixXd(jl.transpose()));
-  qr.setThreshold(kRedundantRow);
+void LoopClosure::select_rows(const double* q_given) {
+  // The loops' rows as columns, their rank among themselves (the drives are
+  // not in it: a drive that repeats a loop is an error of the model, below).
+  const auto rows_qr = [&](const double* q) {
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jl(nl_, nv_);
+    model_.loop_jacobian(q, jl.data());
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Eigen::MatrixXd(jl.transpose()));
+    qr.setThreshold(kRedundantRow);
+    return std::make_pair(qr, jl.allFinite());
+  };
+  std::vector<double> q(q_given, q_given + coordinates_.nq);
+  normalize_quaternions(coordinates_, q.data());
+  const auto [at_q, finite] = rows_qr(q.data());
+  if (!finite) return;  // the run's own checks say what is wrong with q
+  // A repetition of the linkage's geometry holds everywhere, a dead point's
+  // at one configuration only: the rows are counted here and a little way
+  // off, and the larger rank (the configuration off a dead point) decides.
+  Eigen::VectorXd offset(nv_);
+  for (int i = 0; i < nv_; ++i) offset[i] = kRedundancyProbe * (1.0 + 0.5 * std::sin(1.0 + i));
+  displace(coordinates_, q.data(), offset);
+  const auto [off_q, finite_off] = rows_qr(q.data());
+  const auto& qr = finite_off && off_q.rank() > at_q.rank() ? off_q : at_q;
   const Eigen::Index rank = qr.rank();
   // Rank limited by the velocities, not by small pivots: rows that fix more
   // than the tree can move, refused as such, not left out.

@@ -7,9 +7,10 @@
 //
 // A loop row that repeats the conditions of the others (a spatial revolute
 // loop closing a linkage whose joint axes are all parallel: its rows out of
-// the plane vanish) is found at the configuration the closure is built at, by
-// a column-pivoted QR of the rows, and left out: the closure works with the
-// independent rows only, and residual() still measures every row.
+// the plane vanish) is found at the configuration the closure is built at,
+// and a little way off it, by a column-pivoted QR of the rows, and left out:
+// the closure works with the independent rows only, and residual() still
+// measures every row.
 //
 // Driven joints (`motion:`) are driving constraints, one row each after the
 // loops' rows: q_d - motion(t) = 0, a unit row of J, J v = motion'(t) at
@@ -106,6 +107,11 @@ class LoopClosure {
   /// below this fraction of the largest: a structural repetition leaves
   /// round-off (~1e-16), a linkage near (not at) a dead point far more.
   static constexpr double kRedundantRow = 1e-9;
+  /// The rows are also counted at a configuration moved by about this much
+  /// (rad or m) in every velocity coordinate, and the larger rank decides: a
+  /// dead point loses rank at one configuration only, so its rows are the
+  /// linkage's own (and the run then stops there, SingularConstraintError).
+  static constexpr double kRedundancyProbe = 0.05;
 
  private:
   [[noreturn]] void fail(const Eigen::VectorXd& phi, double t, int iterations) const;

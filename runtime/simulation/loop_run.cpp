@@ -46,10 +46,12 @@ class LoopRun final : public ModelRun {
     announce_scaled_quaternions(model.ir(), request.strict, notices_);
     Eigen::VectorXd q0, v0;
     model.initial_coordinates(q0, v0);
-    // Loop rows that repeat the others are found at the initial state, as given.
+    // Loop rows that repeat the others are found at the initial state, as
+    // given (every system of this run from the same).
+    const Eigen::VectorXd q_given = q0;
     try {
-      if (augmented) system_ = std::make_unique<LoopAugmentedSystem>(*model.kernels(), model.bodies(), c, q0.data());
-      else system_ = std::make_unique<LoopPartitionedSystem>(*model.kernels(), model.bodies(), c, q0.data());
+      if (augmented) system_ = std::make_unique<LoopAugmentedSystem>(*model.kernels(), model.bodies(), c, q_given.data());
+      else system_ = std::make_unique<LoopPartitionedSystem>(*model.kernels(), model.bodies(), c, q_given.data());
     } catch (const std::invalid_argument& e) {
       throw InvalidInput(model.ir().source_path + ": " + e.what());
     }
@@ -61,7 +63,7 @@ class LoopRun final : public ModelRun {
       system_->make_consistent(0.0, q, v);
       if (static_start) {
         // Found by the partitioned system whatever the formulation run.
-        LoopPartitionedSystem partitioned(*model.kernels(), model.bodies(), c, q0.data());
+        LoopPartitionedSystem partitioned(*model.kernels(), model.bodies(), c, q_given.data());
         loop_static_state(model.ir(), partitioned, q, v);
         v0.setZero();  // the velocities are the equilibrium's: nothing to announce
       }

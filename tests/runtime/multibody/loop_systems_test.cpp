@@ -219,6 +219,17 @@ TEST(LoopSystems, ASpatialLoopWithRepeatedRowsMovesAsThePlanarOne) {
   EXPECT_NE(run.err.find("3 rows of loop 'coupler_rocker' repeat the conditions of the others at the initial state"),
             std::string::npos)
       << run.err;
+
+  // Started at its dead point (every link along x) the x row vanishes too,
+  // there only: it is not left out, and the run stops at the dead point.
+  std::string dead = kSpatialFourBar;
+  const std::string angles = "crank: 1.0, coupler: -0.5357560074605321, rocker: 1.2995365385792519";
+  dead.replace(dead.find(angles), angles.size(), "crank: 0, coupler: 0, rocker: 0");
+  const std::string dead_path = (dir / "four_bar_dead_point.yaml").string();
+  std::ofstream(dead_path) << dead;
+  const test::CliRun stopped = test::run_cli("simulate " + dead_path + " --t-end 0.01 --out /dev/null");
+  EXPECT_EQ(stopped.status, 2) << stopped.all();
+  EXPECT_NE(stopped.err.find("the linkage is at a dead point"), std::string::npos) << stopped.err;
 }
 
 }  // namespace
